@@ -1,0 +1,151 @@
+//! Report contracts of SPEC §11 (`cdca solve`, `cdca grow`). Field names are
+//! relied upon by other tools: add fields freely, rename none.
+
+use serde::{Deserialize, Serialize};
+
+/// Output of `cdca solve`: one solve at full load, no growth.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SolveReport {
+    /// Number of unknowns (free DOFs, standard and enriched).
+    pub dofs: usize,
+    /// Number of enriched unknowns among them.
+    pub enriched_dofs: usize,
+    pub solver: SolverReport,
+    pub contact: ContactReport,
+    pub tips: Vec<TipReport>,
+}
+
+/// How the linear solves went (summed over contact iterations).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SolverReport {
+    /// `direct`, `automaton`, `cg` or `multigrid`.
+    pub kind: String,
+    /// Sweeps or iterations (1 per factorisation for `direct`).
+    pub iterations: usize,
+    /// Final relative residual ‖f − K u‖/‖f‖.
+    pub residual: f64,
+    pub converged: bool,
+    /// Wall time of the whole solve, s.
+    pub seconds: f64,
+    /// Relative residual after each iteration of the last linear solve.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub residual_history: Vec<f64>,
+}
+
+/// State of the frictional contact on crack faces.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ContactReport {
+    /// Contact iterations (solves) done.
+    pub iterations: usize,
+    pub converged: bool,
+    /// Number of face points in each state.
+    pub open: usize,
+    pub stick: usize,
+    pub slip: usize,
+    /// Dimensionless normal stiffness k_N h / E (largest over cracks; 0 with
+    /// no cracks).
+    pub kn_h_over_e: f64,
+    /// Points that flipped between states too often and were frozen.
+    #[serde(default)]
+    pub cycling: usize,
+    /// Relative change of the displacement in the last contact iteration.
+    #[serde(default)]
+    pub residual: f64,
+}
+
+/// Stress intensity factors and the criterion's decision at one free tip.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct TipReport {
+    /// Index of the crack in the scene's `cracks`.
+    pub crack: usize,
+    /// 0 for the polyline's first point, 1 for its last.
+    pub tip: usize,
+    /// m
+    pub x: f64,
+    /// m
+    pub y: f64,
+    /// K_I, Pa·√m
+    pub k1: f64,
+    /// K_II, Pa·√m
+    pub k2: f64,
+    /// T-stress, Pa
+    pub t_stress: f64,
+    pub criterion: CriterionReport,
+}
+
+/// Growth mode decided by the criterion.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Mode {
+    Tension,
+    Shear,
+    #[default]
+    None,
+}
+
+/// The criterion's decision at a tip (SPEC §8).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct CriterionReport {
+    pub mode: Mode,
+    /// Signed kink angle in the tip frame, degrees (counter-clockwise +).
+    pub angle_deg: f64,
+    /// max σ_θθ on the circle r0, Pa.
+    pub sigma_theta_max: f64,
+    /// max |τ_rθ| on the circle r0, Pa.
+    pub tau_max: f64,
+}
+
+/// Output of `cdca grow`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct GrowReport {
+    pub steps: Vec<GrowthStepReport>,
+    pub outcome: Outcome,
+    /// Final crack polylines, m.
+    pub cracks: Vec<Vec<[f64; 2]>>,
+}
+
+/// How a growth run ended.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Outcome {
+    #[default]
+    Completed,
+    Unstable,
+    Through,
+    MaxSteps,
+}
+
+/// One solve-evaluate-grow step of SPEC §9.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct GrowthStepReport {
+    pub step: usize,
+    pub load_factor: f64,
+    pub grown: Vec<GrownTip>,
+    pub contact: ContactCounts,
+    pub solver_iterations: usize,
+    pub seconds: f64,
+    /// Every free tip's SIFs and decision at this step.
+    #[serde(default)]
+    pub tips: Vec<TipReport>,
+}
+
+/// A tip that grew in a step: its new position and how it grew.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct GrownTip {
+    pub crack: usize,
+    pub tip: usize,
+    pub x: f64,
+    pub y: f64,
+    pub mode: Mode,
+    pub angle_deg: f64,
+    pub k1: f64,
+    pub k2: f64,
+}
+
+/// Counts of face points per contact state.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ContactCounts {
+    pub open: usize,
+    pub stick: usize,
+    pub slip: usize,
+}

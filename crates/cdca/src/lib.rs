@@ -3,12 +3,33 @@
 //!
 //! Headless: no UI and no file system. Scenes come in as `&str` (JSON) and
 //! reports go out as serialisable structs.
+//!
+//! The pipeline of one solve reads like the method: [`model::Model`] (mesh,
+//! material, supports) → [`xfem::Xfem`] (enrichment, quadrature, face
+//! points) → assembly and a solver ([`direct`]) with frictional contact →
+//! [`sif`] → criterion → growth.
 
+pub mod assembly;
+pub mod boundary;
+pub mod cracks;
+pub mod direct;
+pub mod dofs;
+pub mod enrichment;
 pub mod error;
+pub mod field;
+pub mod geometry;
+pub mod loads;
+pub mod material;
+pub mod mesh;
+pub mod model;
+pub mod quadrature;
 pub mod report;
 pub mod scene;
+pub mod sif;
 mod simulation;
+pub mod subdivision;
 mod validate;
+pub mod xfem;
 
 pub use error::{SceneError, SolveError};
 pub use scene::Scene;

@@ -352,7 +352,7 @@ mod tests {
         ("solver.omega", |s| s.solver.omega = 2.0),
         ("solver.contact_tolerance", |s| s.solver.contact_tolerance = 0.0),
         ("solver.max_contact_iterations", |s| s.solver.max_contact_iterations = 0),
-        ("boundary", |s| s.boundary.left = SideBc::Free),
+        ("boundary", |s| (s.boundary.left, s.boundary.points) = (SideBc::Free, vec![])),
         ("boundary", |s| (s.boundary.left, s.boundary.bottom) = (SideBc::Free, SideBc::Free)),
     ];
 

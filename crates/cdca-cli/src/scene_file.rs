@@ -1,0 +1,16 @@
+//! Reading a scene file: the library has no file system, the CLI does.
+
+use std::path::Path;
+
+use cdca::Scene;
+
+use crate::error::CliError;
+
+/// Reads, parses and validates the scene at `path`. Every problem is an
+/// input error naming the file and, for a bad scene, the field and value.
+pub fn load(path: &Path) -> Result<Scene, CliError> {
+    let shown = path.display();
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CliError::Input(format!("cannot read `{shown}`: {e}")))?;
+    Scene::from_json(&text).map_err(|e| CliError::Input(format!("{shown}: {e}")))
+}

@@ -1,0 +1,24 @@
+//! `cdca solve SCENE`: one solve at full load, no growth; prints the
+//! `SolveReport` as JSON.
+
+use std::path::PathBuf;
+
+use cdca::Simulation;
+
+use crate::error::CliError;
+use crate::{output, scene_file};
+
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Scene file (JSON, SPEC §10).
+    scene: PathBuf,
+}
+
+pub fn run(args: &Args) -> Result<(), CliError> {
+    // The scene is validated here, before the simulation builds anything.
+    let scene = scene_file::load(&args.scene)?;
+    let mut sim = Simulation::new(scene)?;
+    sim.set_load_factor(1.0);
+    let report = sim.solve()?;
+    output::print_json(&report)
+}

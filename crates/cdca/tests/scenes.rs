@@ -1,0 +1,92 @@
+//! The bundled example scenes (`assets/scenes/*.json`) parse, validate,
+//! round-trip, and say what their file names promise.
+
+use std::path::PathBuf;
+
+use cdca::Scene;
+use cdca::scene::SideBc;
+
+fn scenes() -> Vec<(String, Scene)> {
+    let dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/scenes"));
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("cannot list {}: {e}", dir.display()))
+        .map(|entry| entry.expect("directory entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    paths.sort();
+    paths
+        .into_iter()
+        .map(|path| {
+            let text = std::fs::read_to_string(&path).expect("scene file is readable");
+            let scene = Scene::from_json(&text)
+                .unwrap_or_else(|e| panic!("{} is not a valid scene: {e}", path.display()));
+            let name = path
+                .file_stem()
+                .expect("file name")
+                .to_string_lossy()
+                .into_owned();
+            (name, scene)
+        })
+        .collect()
+}
+
+#[test]
+fn every_bundled_scene_is_valid_and_described() {
+    let scenes = scenes();
+    assert!(scenes.len() >= 10, "only {} bundled scenes", scenes.len());
+    for (file, scene) in &scenes {
+        assert!(!scene.name.is_empty(), "{file}: no name");
+        assert!(scene.description.len() > 40, "{file}: no description");
+        let again = Scene::from_json(&scene.to_json()).expect("to_json output parses");
+        assert_eq!(&again, scene, "{file}: round trip");
+    }
+}
+
+#[test]
+fn the_default_scene_is_small_enough_to_be_interactive() {
+    let scenes = scenes();
+    let (_, scene) = scenes
+        .iter()
+        .find(|(file, _)| file == "closed_crack_biaxial")
+        .expect("closed_crack_biaxial.json is bundled");
+    assert!(scene.mesh.nx * scene.mesh.ny <= 40 * 40);
+    assert_eq!(scene.cracks.len(), 1);
+}
+
+/// `plate_45_biaxial_k{k}_mu{mu}`: lateral load k·P_V on the right, face
+/// friction μ, the paper's joint stiffness.
+#[test]
+fn biaxial_family_matches_its_file_names() {
+    let mut count = 0;
+    for (file, scene) in scenes() {
+        let Some(params) = file.strip_prefix("plate_45_biaxial_k") else {
+            continue;
+        };
+        let (k, mu) = params.split_once("_mu").expect("k and mu in the name");
+        let (k, mu): (f64, f64) = (k.parse().expect("k"), mu.parse().expect("mu"));
+        let normal = |bc: SideBc| match bc {
+            SideBc::Traction { normal, .. } => normal,
+            other => panic!("{file}: expected a traction, found {other:?}"),
+        };
+        let (top, right) = (normal(scene.boundary.top), normal(scene.boundary.right));
+        assert_eq!(top, -10e6, "{file}: P_V");
+        assert!(
+            (right - k * top).abs() < 1e-6,
+            "{file}: P_H = {right}, k = {k}"
+        );
+        let crack = &scene.cracks[0];
+        assert_eq!(crack.friction, mu, "{file}");
+        assert_eq!(
+            (crack.normal_stiffness, crack.shear_stiffness),
+            (Some(200e9), Some(20e9))
+        );
+        let [a, b] = [0, 1].map(|i| crack.points.as_ref().expect("a polyline")[i]);
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        assert!(
+            (dx.hypot(dy) - 0.06).abs() < 1e-9 && (dx - dy).abs() < 1e-9,
+            "{file}: 45°, 0.06 m"
+        );
+        count += 1;
+    }
+    assert_eq!(count, 7);
+}

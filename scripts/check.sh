@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# What CI checks, runnable by anyone: formatting, lints (warnings are errors),
+# documentation, then the tests.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+run() {
+    echo "+ $*"
+    "$@"
+}
+
+run cargo fmt --all --check
+run cargo clippy --workspace --all-targets -- -D warnings
+RUSTDOCFLAGS="-D warnings" run cargo doc --workspace --no-deps
+run bash scripts/test.sh

@@ -95,26 +95,51 @@ impl EnrichmentFunctions {
 
     /// Values and gradients of an enrichment at `x`.
     pub fn eval(&self, e: Enrichment, x: P2) -> EnrValue {
+        self.eval_sided(e, x, None)
+    }
+
+    /// Like [`eval`](Self::eval), but a point on crack `face.0` is taken on
+    /// its side `face.1` (±1): used for the jumps at crack-face points.
+    pub fn eval_sided(&self, e: Enrichment, x: P2, face: Option<(usize, f64)>) -> EnrValue {
         match e {
             Enrichment::Heaviside { crack } => {
                 let mut v = EnrValue::default();
-                v.f[0] = self.heaviside(crack, x);
+                v.f[0] = match face {
+                    Some((c, side)) if c == crack => {
+                        let mask = self.junctions[crack].iter().all(|&(m, r)| self.side(m, x) == r);
+                        if mask { side } else { 0.0 }
+                    }
+                    _ => self.heaviside(crack, x),
+                };
                 v
             }
-            Enrichment::Tip { crack, tip } => branch(self.frame(crack, tip), x),
+            Enrichment::Tip { crack, tip } => {
+                let (phi, grad) = match face {
+                    Some((c, side)) if c == crack => (if side > 0.0 { 0.0 } else { -0.0 }, P2::zeros()),
+                    _ => crate::geometry::level_set(x, &self.cracks[crack].points),
+                };
+                branch(self.frame(crack, tip), x, phi, grad)
+            }
         }
     }
 }
 
-/// Branch functions and their global gradients at `x` for a tip frame.
-pub fn branch(frame: &TipFrame, x: P2) -> EnrValue {
-    let l = frame.local(x);
-    let r = l.norm();
+/// Branch functions and their global gradients at `x` for a tip, in the
+/// level-set coordinates `r = √(φ² + ψ²)`, `θ = atan2(φ, ψ)` with
+/// `ψ = (x − x_tip)·e1`: the discontinuity at θ = ±π follows the crack
+/// itself, kinks included. For a straight crack these are the polar
+/// coordinates of the tip frame (up to θ → −θ at tip 0, which leaves the
+/// span of the four functions unchanged).
+pub fn branch(frame: &TipFrame, x: P2, phi: f64, grad_phi: P2) -> EnrValue {
+    let psi = (x - frame.origin).dot(&frame.e1);
+    let r = phi.hypot(psi);
     let mut v = EnrValue::default();
     if r <= 0.0 {
         return v; // values vanish at the tip; gradients are never needed there
     }
-    let th = l.y.atan2(l.x);
+    let th = phi.atan2(psi);
+    let grad_r = (grad_phi * phi + frame.e1 * psi) / r;
+    let grad_th = (grad_phi * psi - frame.e1 * phi) / (r * r);
     let sr = r.sqrt();
     let (s2, c2) = (0.5 * th).sin_cos();
     let (s, c) = th.sin_cos();
@@ -128,12 +153,16 @@ pub fn branch(frame: &TipFrame, x: P2) -> EnrValue {
         sr * (c * c2 - 0.5 * s * s2),
     ];
     for i in 0..4 {
-        let g1 = fr[i] * c - ft[i] * s / r;
-        let g2 = fr[i] * s + ft[i] * c / r;
         v.f[i] = f[i];
-        v.g[i] = frame.global(P2::new(g1, g2));
+        v.g[i] = grad_r * fr[i] + grad_th * ft[i];
     }
     v
+}
+
+/// Branch functions of a straight crack along the tip frame's `e1` axis.
+#[cfg(test)]
+fn branch_straight(frame: &TipFrame, x: P2) -> EnrValue {
+    branch(frame, x, (x - frame.origin).dot(&frame.e2), frame.e2)
 }
 
 #[cfg(test)]
@@ -148,11 +177,11 @@ mod tests {
             e2: P2::new(-0.8, 0.6),
         };
         let x = P2::new(0.1, 0.45);
-        let v = branch(&frame, x);
+        let v = branch_straight(&frame, x);
         let h = 1e-7;
         for i in 0..4 {
-            let dx = (branch(&frame, x + P2::new(h, 0.0)).f[i] - branch(&frame, x - P2::new(h, 0.0)).f[i]) / (2.0 * h);
-            let dy = (branch(&frame, x + P2::new(0.0, h)).f[i] - branch(&frame, x - P2::new(0.0, h)).f[i]) / (2.0 * h);
+            let dx = (branch_straight(&frame, x + P2::new(h, 0.0)).f[i] - branch_straight(&frame, x - P2::new(h, 0.0)).f[i]) / (2.0 * h);
+            let dy = (branch_straight(&frame, x + P2::new(0.0, h)).f[i] - branch_straight(&frame, x - P2::new(0.0, h)).f[i]) / (2.0 * h);
             assert!((dx - v.g[i].x).abs() < 1e-6 && (dy - v.g[i].y).abs() < 1e-6, "F{i}");
         }
     }
@@ -164,8 +193,8 @@ mod tests {
             e1: P2::new(1.0, 0.0),
             e2: P2::new(0.0, 1.0),
         };
-        let up = branch(&frame, P2::new(-0.25, 1e-14));
-        let dn = branch(&frame, P2::new(-0.25, -1e-14));
+        let up = branch_straight(&frame, P2::new(-0.25, 1e-14));
+        let dn = branch_straight(&frame, P2::new(-0.25, -1e-14));
         assert!((up.f[0] - dn.f[0] - 2.0 * 0.5).abs() < 1e-12);
         for i in 1..4 {
             assert!((up.f[i] - dn.f[i]).abs() < 1e-12);

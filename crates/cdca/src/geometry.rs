@@ -30,11 +30,13 @@ pub fn closest_on_segment(p: P2, a: P2, b: P2) -> f64 {
     ((p - a).dot(&d) / l2).clamp(0.0, 1.0)
 }
 
-/// Signed distance from `p` to the polyline `pts`: positive on the left of
-/// the polyline's direction. The sign comes from the closest segment; at a
-/// shared vertex from the angle-bisecting pseudo-normal; beyond an end point
-/// from the end segment's line (the level set extended past the tips).
-pub fn signed_distance(p: P2, pts: &[P2]) -> f64 {
+/// Crack level set φ of the polyline `pts` at `p` and its gradient: the
+/// signed distance (positive on the left of the polyline's direction).
+/// The sign comes from the closest segment; at a shared vertex from the
+/// angle-bisecting pseudo-normal. Beyond an end point φ is the signed
+/// distance to the end segment's line (the level set extended past the
+/// tips), so that `θ = atan2(φ, ψ)` is the polar angle ahead of a tip.
+pub fn level_set(p: P2, pts: &[P2]) -> (f64, P2) {
     let mut best = f64::INFINITY;
     let mut best_seg = 0;
     let mut best_t = 0.0;
@@ -47,18 +49,29 @@ pub fn signed_distance(p: P2, pts: &[P2]) -> f64 {
             best_t = t;
         }
     }
-    let dist = best.sqrt();
     let n_seg = pts.len() - 1;
-    let a = pts[best_seg];
-    let b = pts[best_seg + 1];
-    let side = if best_t <= 0.0 && best_seg > 0 {
-        vertex_side(p, pts, best_seg)
-    } else if best_t >= 1.0 && best_seg + 1 < n_seg {
-        vertex_side(p, pts, best_seg + 1)
-    } else {
-        cross(b - a, p - a)
-    };
-    if side >= 0.0 { dist } else { -dist }
+    let (a, b) = (pts[best_seg], pts[best_seg + 1]);
+    let normal = perp((b - a).normalize());
+    let beyond_start = best_seg == 0 && best_t <= 0.0;
+    let beyond_end = best_seg + 1 == n_seg && best_t >= 1.0;
+    if beyond_start || beyond_end || (best_t > 0.0 && best_t < 1.0) {
+        return ((p - a).dot(&normal), normal);
+    }
+    // closest to an interior vertex
+    let k = if best_t <= 0.0 { best_seg } else { best_seg + 1 };
+    let d = p - pts[k];
+    let dist = d.norm();
+    let side = vertex_side(p, pts, k);
+    let sign = if side >= 0.0 { 1.0 } else { -1.0 };
+    if dist < 1e-300 {
+        return (0.0, normal);
+    }
+    (sign * dist, d / dist * sign)
+}
+
+/// Signed distance φ (see [`level_set`]).
+pub fn signed_distance(p: P2, pts: &[P2]) -> f64 {
+    level_set(p, pts).0
 }
 
 /// Side of `p` at interior vertex `k` by the pseudo-normal (sum of the unit
@@ -189,8 +202,8 @@ mod tests {
         let pts = [P2::new(0.0, 0.0), P2::new(1.0, 0.0), P2::new(2.0, 1.0)];
         assert!((signed_distance(P2::new(0.5, 0.3), &pts) - 0.3).abs() < 1e-15);
         assert!((signed_distance(P2::new(0.5, -0.2), &pts) + 0.2).abs() < 1e-15);
-        // beyond the first end: the end segment's line decides
-        assert!(signed_distance(P2::new(-1.0, 0.1), &pts) > 0.0);
+        // beyond the first end: the distance to the end segment's line
+        assert!((signed_distance(P2::new(-1.0, 0.1), &pts) - 0.1).abs() < 1e-15);
         // at the kink, outside the bend
         assert!(signed_distance(P2::new(1.1, -0.2), &pts) < 0.0);
     }

@@ -10,24 +10,37 @@
 //! [`sif`] → criterion → growth.
 
 pub mod assembly;
+pub mod automaton;
 pub mod boundary;
+pub mod cells;
+pub mod contact;
+pub mod contact_loop;
 pub mod cracks;
+pub mod criterion;
 pub mod direct;
 pub mod dofs;
+pub mod element_op;
 pub mod enrichment;
 pub mod error;
 pub mod field;
 pub mod geometry;
+pub mod growth;
 pub mod loads;
 pub mod material;
 pub mod mesh;
 pub mod model;
+pub mod multigrid;
+pub mod pcg;
 pub mod quadrature;
+pub mod relaxation;
 pub mod report;
 pub mod scene;
 pub mod sif;
 mod simulation;
+pub mod solver;
+pub mod solvers;
 pub mod subdivision;
+pub mod tips;
 mod validate;
 pub mod xfem;
 

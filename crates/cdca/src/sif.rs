@@ -18,7 +18,7 @@ use crate::field::Field;
 use crate::geometry::P2;
 use crate::material::Elastic;
 use crate::quadrature::{QPoint, box_rule};
-use crate::xfem::{REGULAR, Xfem};
+use crate::xfem::REGULAR;
 
 /// K_I, K_II (Pa·√m) and T (Pa) of one tip.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -144,20 +144,22 @@ pub fn tip_sifs(field: &Field, crack: usize, frame: &TipFrame, r_j: f64, tractio
                 continue;
             }
             let e = x.enriched[fp.slot].elem;
-            let (nsh, _) = m.shape(e, fp.x);
-            let q = (0..4).map(|i| nsh[i] * q_node(m.element_nodes(e)[i])).sum::<f64>();
-            if q <= 0.0 {
-                continue;
-            }
-            let loc = frame.local(fp.x);
-            let r = loc.norm();
+            let qn: [f64; 4] = m.element_nodes(e).map(q_node);
             // the + side (φ > 0) is on the e2 side when n·e2 > 0
             let plus = if fp.n.dot(&frame.e2) >= 0.0 { PI } else { -PI };
             let pl = P2::new(p.dot(&frame.e1), p.dot(&frame.e2));
-            for (mi, out) in integral.iter_mut().enumerate() {
-                let up = aux(mi, r, plus, el).du1;
-                let dn = aux(mi, r, -plus, el).du1;
-                *out += (pl.x * (up[0] - dn[0]) + pl.y * (up[1] - dn[1])) * q * fp.w;
+            for qp in &fp.qps {
+                let (nsh, _) = m.shape(e, qp.x);
+                let q = (0..4).map(|i| nsh[i] * qn[i]).sum::<f64>();
+                if q <= 0.0 {
+                    continue;
+                }
+                let r = frame.local(qp.x).norm();
+                for (mi, out) in integral.iter_mut().enumerate() {
+                    let up = aux(mi, r, plus, el).du1;
+                    let dn = aux(mi, r, -plus, el).du1;
+                    *out += (pl.x * (up[0] - dn[0]) + pl.y * (up[1] - dn[1])) * q * qp.w;
+                }
             }
         }
     }

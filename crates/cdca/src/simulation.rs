@@ -1,9 +1,24 @@
 //! The facade used by the CLI and the workbench: one scene, its model, its
 //! mutable state and its scratch, and the steps of the method.
 
+use web_time::Instant;
+
+use crate::contact::{FaceState, carry_over, counts};
+use crate::contact_loop::{ContactInfo, ContactParams, solve_with_contact};
+use crate::cracks::{Crack, TipKind, classify_tips};
+use crate::criterion::{Circle, CriterionParams};
 use crate::error::SolveError;
-use crate::report::{GrowthStepReport, SolveReport, TipReport};
+use crate::field::Field;
+use crate::geometry::P2;
+use crate::growth::{apply, extend};
+use crate::model::Model;
+use crate::report::{
+    ContactReport, GrowthStepReport, GrownTip, Mode, Outcome, SolveReport, SolverReport, TipReport,
+};
 use crate::scene::Scene;
+use crate::solver::LinearSolver;
+use crate::tips::evaluate_tips;
+use crate::xfem::Xfem;
 
 /// State of a crack-face contact point.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -64,85 +79,428 @@ pub struct RelaxStatus {
     pub converged: bool,
 }
 
-/// One scene being simulated: model (immutable), state (cracks, displacement,
-/// contact history) and scratch (factorisations, buffers).
+/// One scene being simulated: the model (immutable), the state (cracks,
+/// load factor, displacement, committed contact states, history) and the
+/// scratch (discretisation, solver and its factorisation, tip results).
 pub struct Simulation {
-    scene: Scene,
+    model: Model,
+    state: State,
+    scratch: Scratch,
 }
 
-// CONTRACT (bodies are being filled in by the core work; signatures are fixed).
+/// What a saved session would need to resume.
+struct State {
+    /// The scene with the current (grown) cracks.
+    scene: Scene,
+    cracks: Vec<Crack>,
+    lambda: f64,
+    /// Free-DOF displacement of the current discretisation.
+    u: Vec<f64>,
+    /// Contact states of the last converged solve.
+    faces: Vec<FaceState>,
+    solved: bool,
+    history: Vec<GrowthStepReport>,
+    outcome: Option<Outcome>,
+    /// Load increment (1-based) the growth loop is at, and growths there.
+    increment: usize,
+    growths_here: usize,
+}
+
+/// Derived data, rebuilt from model and state; never serialised.
+struct Scratch {
+    xfem: Xfem,
+    f_ext: Vec<f64>,
+    solver: Box<dyn LinearSolver>,
+    tips: Vec<TipReport>,
+    circles: Vec<Circle>,
+    contact: ContactInfo,
+    residual: Vec<ResidualSample>,
+}
+
 impl Simulation {
     /// Validates the scene and builds the discretisation (no solve yet).
     pub fn new(scene: Scene) -> Result<Self, SolveError> {
         scene.validate()?;
-        Ok(Self { scene })
+        let model = Model::new(scene.clone());
+        let cracks = model.initial_cracks();
+        let xfem = model.discretise(cracks.clone());
+        let f_ext = crate::loads::traction_forces(&xfem, &scene.boundary);
+        let n = xfem.n_free();
+        let nf = xfem.faces.len();
+        Ok(Self {
+            scratch: Scratch {
+                xfem,
+                f_ext,
+                solver: crate::solvers::make_solver(&scene.solver),
+                tips: Vec::new(),
+                circles: Vec::new(),
+                contact: ContactInfo::default(),
+                residual: Vec::new(),
+            },
+            state: State {
+                scene,
+                cracks,
+                lambda: 1.0,
+                u: vec![0.0; n],
+                faces: vec![FaceState::default(); nf],
+                solved: false,
+                history: Vec::new(),
+                outcome: None,
+                increment: 1,
+                growths_here: 0,
+            },
+            model,
+        })
     }
+
     /// The scene as currently simulated (cracks include grown segments).
     pub fn scene(&self) -> &Scene {
-        &self.scene
+        &self.state.scene
     }
+
+    /// The discretisation (for exports and diagnostics).
+    pub fn xfem(&self) -> &Xfem {
+        &self.scratch.xfem
+    }
+
+    /// Free-DOF displacement of the last solve.
+    pub fn displacement(&self) -> &[f64] {
+        &self.state.u
+    }
+
     /// Load factor λ in [0, 1] applied to every load.
     pub fn load_factor(&self) -> f64 {
-        unimplemented!()
+        self.state.lambda
     }
-    pub fn set_load_factor(&mut self, _lambda: f64) {
-        unimplemented!()
+
+    pub fn set_load_factor(&mut self, lambda: f64) {
+        if lambda.is_finite() {
+            self.state.lambda = lambda.clamp(0.0, 1.0);
+            self.state.solved = false;
+        }
     }
+
+    fn contact_params(&self) -> ContactParams {
+        let s = &self.model.scene.solver;
+        ContactParams {
+            tolerance: s.contact_tolerance,
+            max_iterations: s.max_contact_iterations,
+            ..ContactParams::default()
+        }
+    }
+
+    fn criterion_params(&self) -> CriterionParams {
+        let h = self.model.mesh.h();
+        let c = &self.model.scene.criterion;
+        CriterionParams::new(c.kind, c.r0.unwrap_or(3.0 * h), &self.model.scene.material)
+    }
+
     /// Full solve (with contact) at the current load factor with the scene's
     /// solver; fills SIFs and criterion at every free tip.
     pub fn solve(&mut self) -> Result<SolveReport, SolveError> {
-        unimplemented!()
+        let start = Instant::now();
+        let f: Vec<f64> = self.scratch.f_ext.iter().map(|v| v * self.state.lambda).collect();
+        let params = self.contact_params();
+        let (states, info) = solve_with_contact(
+            &self.scratch.xfem,
+            &f,
+            &self.state.faces,
+            &mut self.state.u,
+            self.scratch.solver.as_mut(),
+            params,
+        )?;
+        self.state.faces = states;
+        self.scratch.contact = info;
+        self.state.solved = true;
+        self.evaluate();
+        let seconds = start.elapsed().as_secs_f64();
+        self.scratch.residual = self
+            .scratch
+            .contact
+            .last
+            .history
+            .iter()
+            .enumerate()
+            .map(|(i, &r)| ResidualSample {
+                iteration: i + 1,
+                seconds,
+                residual: r,
+            })
+            .collect();
+        Ok(self.report(seconds))
     }
+
+    fn evaluate(&mut self) {
+        let (tips, circles) = evaluate_tips(
+            &self.scratch.xfem,
+            &self.state.u,
+            &self.state.faces,
+            &self.criterion_params(),
+            self.model.scene.criterion.sampling,
+        );
+        self.scratch.tips = tips;
+        self.scratch.circles = circles;
+    }
+
+    /// The report of the last solve (SPEC §11).
+    pub fn report(&self, seconds: f64) -> SolveReport {
+        let x = &self.scratch.xfem;
+        let c = counts(&self.state.faces);
+        let info = &self.scratch.contact;
+        let kn_h_over_e = x
+            .funcs
+            .cracks
+            .iter()
+            .map(|c| c.kn * x.mesh.h() / x.elastic.young)
+            .fold(0.0, f64::max);
+        SolveReport {
+            dofs: x.n_free(),
+            enriched_dofs: x.dofs.n_enriched,
+            solver: SolverReport {
+                kind: self.scratch.solver.name().to_string(),
+                iterations: info.linear_iterations,
+                residual: info.last.residual,
+                converged: info.last.converged,
+                seconds,
+                residual_history: info.last.history.clone(),
+            },
+            contact: ContactReport {
+                iterations: info.iterations,
+                converged: info.converged,
+                open: c.open,
+                stick: c.stick,
+                slip: c.slip,
+                kn_h_over_e,
+                cycling: info.cycling,
+                residual: info.residual,
+            },
+            tips: self.scratch.tips.clone(),
+        }
+    }
+
     /// Starts (or restarts) a resumable iterative solve from the current
     /// displacement. For the direct solver this does the whole solve at the
     /// first `relax` call.
     pub fn start_relaxation(&mut self) {
-        unimplemented!()
+        self.state.solved = false;
+        self.scratch.residual.clear();
     }
+
     /// Runs at most `max_iterations` sweeps of the relaxation started by
     /// `start_relaxation`; cheap to call once per frame.
     pub fn relax(&mut self, _max_iterations: usize) -> Result<RelaxStatus, SolveError> {
-        unimplemented!()
+        let r = self.solve()?;
+        Ok(RelaxStatus {
+            iterations: r.solver.iterations,
+            residual: r.solver.residual,
+            converged: r.solver.converged && r.contact.converged,
+        })
     }
+
     /// Residual samples of the current relaxation.
     pub fn residual_history(&self) -> &[ResidualSample] {
-        unimplemented!()
+        &self.scratch.residual
     }
-    /// One growth step of SPEC §9 (solve, evaluate, extend tips that meet the
-    /// criterion, or advance the load factor).
+
+    /// One growth step of SPEC §9: solve at the current load increment,
+    /// evaluate every free tip, extend those that meet the criterion by Δa
+    /// (or, if none does, advance the load factor).
     pub fn grow_step(&mut self) -> Result<GrowthStepReport, SolveError> {
-        unimplemented!()
+        if self.state.outcome.is_some() {
+            return Ok(self.state.history.last().cloned().unwrap_or_default());
+        }
+        let start = Instant::now();
+        let g = &self.model.scene.growth;
+        let (load_steps, max_here, max_steps) = (g.load_steps, g.max_growth_per_step, g.max_steps);
+        self.state.lambda = self.state.increment as f64 / load_steps as f64;
+        let report = self.solve()?;
+        let da = self.model.scene.growth.increment.unwrap_or(self.criterion_params().r0);
+        let growing: Vec<TipReport> =
+            report.tips.iter().filter(|t| t.criterion.mode != Mode::None).cloned().collect();
+        let mut step = GrowthStepReport {
+            step: self.state.history.len() + 1,
+            load_factor: self.state.lambda,
+            grown: Vec::new(),
+            contact: counts(&self.state.faces),
+            solver_iterations: report.solver.iterations,
+            seconds: 0.0,
+            tips: report.tips.clone(),
+        };
+        if growing.is_empty() {
+            self.state.increment += 1;
+            self.state.growths_here = 0;
+            if self.state.increment > load_steps {
+                self.state.outcome = Some(Outcome::Completed);
+            }
+        } else {
+            self.state.growths_here += 1;
+            step.grown = self.grow_tips(&growing, da);
+            if self.state.growths_here >= max_here {
+                self.state.outcome = Some(Outcome::Unstable);
+            }
+        }
+        if self.state.outcome.is_none() && self.state.cracks.iter().all(|c| c.free_tips().count() == 0) {
+            let any_boundary = self.state.cracks.iter().any(|c| c.tips.contains(&TipKind::Boundary));
+            if !self.state.cracks.is_empty() && any_boundary {
+                self.state.outcome = Some(Outcome::Through);
+            }
+        }
+        if self.state.outcome.is_none() && step.step >= max_steps {
+            self.state.outcome = Some(Outcome::MaxSteps);
+        }
+        step.seconds = start.elapsed().as_secs_f64();
+        self.state.history.push(step.clone());
+        Ok(step)
     }
+
+    /// Extends the growing tips (all from the same solution) and rebuilds
+    /// the discretisation, carrying contact states and displacement over.
+    fn grow_tips(&mut self, growing: &[TipReport], da: f64) -> Vec<GrownTip> {
+        let m = &self.model.mesh;
+        let snap = 0.5 * m.h();
+        let mut ext = Vec::new();
+        for t in growing {
+            let e = extend(
+                &self.state.cracks,
+                t.crack,
+                t.tip,
+                t.criterion.angle_deg.to_radians(),
+                da,
+                m.width,
+                m.height,
+                snap,
+            );
+            ext.push((t, e));
+        }
+        let mut grown = Vec::new();
+        for (t, e) in ext {
+            let p = e.point();
+            if (p - self.state.cracks[t.crack].tip_point(t.tip)).norm() > 1e-6 * m.h() {
+                apply(&mut self.state.cracks[t.crack], t.tip, p);
+            }
+            grown.push(GrownTip {
+                crack: t.crack,
+                tip: t.tip,
+                x: p.x,
+                y: p.y,
+                mode: t.criterion.mode,
+                angle_deg: t.criterion.angle_deg,
+                k1: t.k1,
+                k2: t.k2,
+            });
+        }
+        classify_tips(&mut self.state.cracks, m.width, m.height, 1e-9 * m.h());
+        self.rebuild();
+        grown
+    }
+
+    /// New discretisation for the current cracks; states and displacement
+    /// carried over.
+    fn rebuild(&mut self) {
+        let new = self.model.discretise(self.state.cracks.clone());
+        let faces = carry_over(&self.scratch.xfem.faces, &self.state.faces, &new.faces, self.model.mesh.h());
+        let mut u = vec![0.0; new.n_free()];
+        let old = &self.scratch.xfem.dofs;
+        for n in 0..self.model.mesh.node_count() {
+            for c in 0..2 {
+                let (a, b) = (old.std_free(n, c), new.dofs.std_free(n, c));
+                if a != crate::dofs::FIXED && b != crate::dofs::FIXED {
+                    u[b as usize] = self.state.u[a as usize];
+                }
+            }
+        }
+        self.scratch.f_ext = crate::loads::traction_forces(&new, &self.model.scene.boundary);
+        self.scratch.xfem = new;
+        self.scratch.solver = crate::solvers::make_solver(&self.model.scene.solver);
+        self.state.faces = faces;
+        self.state.u = u;
+        self.state.solved = false;
+        self.state.scene.cracks = self
+            .state
+            .cracks
+            .iter()
+            .zip(&self.model.scene.cracks)
+            .map(|(c, spec)| crate::scene::CrackSpec {
+                points: Some(c.points.iter().map(|p| [p.x, p.y]).collect()),
+                arc: None,
+                ..spec.clone()
+            })
+            .collect();
+    }
+
     /// Growth history so far.
     pub fn history(&self) -> &[GrowthStepReport] {
-        unimplemented!()
+        &self.state.history
     }
+
     /// Whether growth has ended (through, unstable, max steps, completed).
-    pub fn growth_finished(&self) -> Option<crate::report::Outcome> {
-        unimplemented!()
+    pub fn growth_finished(&self) -> Option<Outcome> {
+        self.state.outcome
     }
+
     /// Current crack polylines, m.
     pub fn cracks(&self) -> Vec<Vec<[f64; 2]>> {
-        unimplemented!()
+        self.state.cracks.iter().map(|c| c.points.iter().map(|p| [p.x, p.y]).collect()).collect()
     }
+
     /// SIFs and criterion at every free tip after the last solve.
     pub fn tips(&self) -> &[TipReport] {
-        unimplemented!()
+        &self.scratch.tips
     }
+
+    /// Whether the displacement belongs to the current cracks and load.
+    pub fn is_solved(&self) -> bool {
+        self.state.solved
+    }
+
+    fn field(&self) -> Option<Field<'_>> {
+        self.state.solved.then(|| Field {
+            xfem: &self.scratch.xfem,
+            u: &self.state.u,
+        })
+    }
+
     /// σ_xx, σ_yy, τ_xy at a point, Pa (None outside the specimen or before a solve).
-    pub fn stress_at(&self, _p: [f64; 2]) -> Option<[f64; 3]> {
-        unimplemented!()
+    pub fn stress_at(&self, p: [f64; 2]) -> Option<[f64; 3]> {
+        let f = self.field()?;
+        f.stress_at(P2::new(p[0], p[1]))
     }
+
     /// Displacement at a point, m.
-    pub fn displacement_at(&self, _p: [f64; 2]) -> Option<[f64; 2]> {
-        unimplemented!()
+    pub fn displacement_at(&self, p: [f64; 2]) -> Option<[f64; 2]> {
+        let f = self.field()?;
+        f.at(P2::new(p[0], p[1])).map(|v| [v.u.x, v.u.y])
     }
+
     /// Crack-face contact points with their state and tractions.
     pub fn contact_points(&self) -> Vec<ContactPointView> {
-        unimplemented!()
+        self.scratch
+            .xfem
+            .faces
+            .iter()
+            .zip(&self.state.faces)
+            .map(|(fp, s)| ContactPointView {
+                x: fp.x.x,
+                y: fp.x.y,
+                normal: [fp.n.x, fp.n.y],
+                state: s.state,
+                p_n: s.p_n,
+                p_t: s.p_t,
+                slip: s.g_t,
+            })
+            .collect()
     }
+
     /// σ_θθ and τ_rθ around tip `index` of `tips()`.
-    pub fn criterion_curve(&self, _index: usize) -> Option<CriterionCurve> {
-        unimplemented!()
+    pub fn criterion_curve(&self, index: usize) -> Option<CriterionCurve> {
+        let c = self.scratch.circles.get(index)?;
+        let p = self.criterion_params();
+        Some(CriterionCurve {
+            theta_deg: c.theta.iter().map(|t| t.to_degrees()).collect(),
+            sigma_tt: c.sigma_tt.clone(),
+            tau_rt: c.tau_rt.clone(),
+            sigma_t: p.sigma_t,
+            r0: p.r0,
+        })
     }
 }

@@ -19,6 +19,9 @@ use crate::mesh::Mesh;
 use crate::quadrature::{QPoint, box_rule, segment_rule};
 use crate::subdivision::{element_rule, split_by_lines};
 
+/// Gauss points per crack piece away from tips.
+pub const FACE_ORDER: usize = 2;
+
 /// Marks an element without its own data (an ordinary element).
 pub const REGULAR: u32 = u32::MAX;
 
@@ -64,13 +67,21 @@ pub struct EnrichedElement {
     pub k: DMatrix<f64>,
 }
 
-/// A Gauss point on a crack face, carrying the contact state.
+/// A crack piece (the part of a crack segment inside one element) carrying
+/// one contact state: its gap is the mean of the jump over the piece and its
+/// traction is uniform on it (a piecewise-constant multiplier space, stable
+/// where point-wise penalties lock: near a tip the jump vanishes like √r and
+/// point-wise tractions would be forced to zero there).
 #[derive(Clone, Debug)]
 pub struct FacePoint {
     pub crack: usize,
+    /// Midpoint, m.
     pub x: P2,
-    /// Length weight times thickness, m².
+    /// Length times thickness, m².
     pub w: f64,
+    /// Gauss points on the piece (weights: length times thickness), for
+    /// integrals of the traction against other fields.
+    pub qps: Vec<QPoint>,
     /// Unit normal into the φ > 0 side.
     pub n: P2,
     /// Unit tangent along the polyline's direction.
@@ -79,7 +90,8 @@ pub struct FacePoint {
     pub s: f64,
     /// Index of the owning element in [`Xfem::enriched`].
     pub slot: usize,
-    /// Jump `ψ(x⁺) − ψ(x⁻)` of each scalar shape function of the element.
+    /// Mean over the piece of the jump `ψ(x⁺) − ψ(x⁻)` of each scalar
+    /// shape function of the element.
     pub jump: Vec<f64>,
 }
 
@@ -235,8 +247,20 @@ impl Xfem {
     /// Values and gradients of the scalar shape functions of an enriched
     /// element at `x`.
     pub fn eval_enriched(&self, el: &EnrichedElement, x: P2, vals: &mut Vec<f64>, grads: &mut Vec<P2>) {
+        self.eval_enriched_sided(el, x, None, vals, grads);
+    }
+
+    /// The same at a point of crack `face.0`, taken on side `face.1` (±1).
+    pub fn eval_enriched_sided(
+        &self,
+        el: &EnrichedElement,
+        x: P2,
+        face: Option<(usize, f64)>,
+        vals: &mut Vec<f64>,
+        grads: &mut Vec<P2>,
+    ) {
         let (n, dn) = self.mesh.shape(el.elem, x);
-        let ev: Vec<EnrValue> = el.enrs.iter().map(|&e| self.funcs.eval(e, x)).collect();
+        let ev: Vec<EnrValue> = el.enrs.iter().map(|&e| self.funcs.eval_sided(e, x, face)).collect();
         vals.clear();
         grads.clear();
         for s in &el.scalars {
@@ -316,24 +340,36 @@ impl Xfem {
                     }
                     let el = &self.enriched[slot as usize];
                     let tipped = el.enrs.iter().any(|x| matches!(x, Enrichment::Tip { crack, .. } if *crack == c));
+                    let (pa, pb) = (a + t0 * (b - a), a + t1 * (b - a));
                     let mut q = Vec::new();
-                    segment_rule(a + t0 * (b - a), a + t1 * (b - a), if tipped { 6 } else { 2 }, &mut q);
-                    let eps = 1e-9 * h;
-                    for p in q {
-                        self.eval_enriched(el, p.x + eps * n, &mut vals, &mut grads);
-                        self.eval_enriched(el, p.x - eps * n, &mut vm, &mut grads);
-                        let jump: Vec<f64> = vals.iter().zip(&vm).map(|(u, v)| u - v).collect();
-                        faces.push(FacePoint {
-                            crack: c,
-                            x: p.x,
-                            w: p.w * self.thickness,
-                            n,
-                            t,
-                            s: s0 + (p.x - a).norm(),
-                            slot: slot as usize,
-                            jump,
-                        });
+                    let at_tip = |p: P2| crack.free_tips().any(|k| (crack.tip_point(k) - p).norm() < 1e-9 * h);
+                    if at_tip(pb) {
+                        graded_segment_rule(pa, pb, 6, &mut q);
+                    } else if at_tip(pa) {
+                        graded_segment_rule(pb, pa, 6, &mut q);
+                    } else {
+                        segment_rule(pa, pb, if tipped { 6 } else { FACE_ORDER }, &mut q);
                     }
+                    let length: f64 = q.iter().map(|p| p.w).sum();
+                    let mut jump = vec![0.0; el.scalars.len()];
+                    for p in &q {
+                        self.eval_enriched_sided(el, p.x, Some((c, 1.0)), &mut vals, &mut grads);
+                        self.eval_enriched_sided(el, p.x, Some((c, -1.0)), &mut vm, &mut grads);
+                        for (j, (u, v)) in jump.iter_mut().zip(vals.iter().zip(&vm)) {
+                            *j += (u - v) * p.w / length;
+                        }
+                    }
+                    faces.push(FacePoint {
+                        crack: c,
+                        x: mid,
+                        w: length * self.thickness,
+                        qps: q.iter().map(|p| QPoint { x: p.x, w: p.w * self.thickness }).collect(),
+                        n,
+                        t,
+                        s: s0 + (mid - a).norm(),
+                        slot: slot as usize,
+                        jump,
+                    });
                 }
                 s0 += len;
             }
@@ -344,6 +380,22 @@ impl Xfem {
     /// Number of free DOFs.
     pub fn n_free(&self) -> usize {
         self.dofs.n_free
+    }
+}
+
+/// Gauss rule on the segment from `far` to a crack tip `tip`, graded as
+/// `r = t²` so that integrands like `f(r)/√r` (the face term of the
+/// interaction integral) become smooth: weights carry `dr = 2t dt`.
+fn graded_segment_rule(far: P2, tip: P2, n: usize, out: &mut Vec<QPoint>) {
+    let len = (far - tip).norm();
+    let dir = (far - tip) / len;
+    let root = len.sqrt();
+    for (s, w) in crate::quadrature::gauss_legendre(n) {
+        let t = 0.5 * (s + 1.0) * root;
+        out.push(QPoint {
+            x: tip + dir * (t * t),
+            w: w * 0.5 * root * 2.0 * t,
+        });
     }
 }
 
@@ -446,9 +498,8 @@ fn classify_nodes(
                 set.extend(m.element_nodes(e));
             }
             for &n in &set {
-                let frame = funcs.frame(c, k);
-                let v = crate::enrichment::branch(frame, m.node_pos(n));
-                enr[n].push((Enrichment::Tip { crack: c, tip: k }, v.f));
+                let kind = Enrichment::Tip { crack: c, tip: k };
+                enr[n].push((kind, funcs.eval(kind, m.node_pos(n)).f));
             }
             tip_nodes.extend(set);
         }

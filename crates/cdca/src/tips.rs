@@ -1,0 +1,53 @@
+//! Evaluation of every free tip after a solve: SIFs by the interaction
+//! integral (with the contact tractions) and the criterion's decision.
+
+use crate::contact::FaceState;
+use crate::criterion::{Circle, CriterionParams, decide, sample_field, sample_williams};
+use crate::cracks::TipFrame;
+use crate::field::Field;
+use crate::geometry::P2;
+use crate::report::TipReport;
+use crate::scene::Sampling;
+use crate::sif::tip_sifs;
+use crate::xfem::Xfem;
+
+/// Radius of the interaction-integral domain, in element sizes.
+pub const DOMAIN_RADIUS: f64 = 3.0;
+
+/// Tip reports and the sampled circles, in the order crack, tip.
+pub fn evaluate_tips(
+    x: &Xfem,
+    u: &[f64],
+    states: &[FaceState],
+    params: &CriterionParams,
+    sampling: Sampling,
+) -> (Vec<TipReport>, Vec<Circle>) {
+    let field = Field { xfem: x, u };
+    let tractions: Vec<P2> = x.faces.iter().zip(states).map(|(fp, s)| s.traction(fp)).collect();
+    let r_j = DOMAIN_RADIUS * x.mesh.h();
+    let mut reports = Vec::new();
+    let mut circles = Vec::new();
+    for (c, crack) in x.funcs.cracks.iter().enumerate() {
+        for k in crack.free_tips() {
+            let frame = TipFrame::of(crack, k);
+            let s = tip_sifs(&field, c, &frame, r_j, &tractions);
+            let circle = match sampling {
+                Sampling::Field => sample_field(&frame, params.r0, &|p| field.stress_at(p)),
+                Sampling::Williams => sample_williams(&s, params.r0),
+            };
+            let criterion = decide(params, &circle, &s);
+            reports.push(TipReport {
+                crack: c,
+                tip: k,
+                x: frame.origin.x,
+                y: frame.origin.y,
+                k1: s.k1,
+                k2: s.k2,
+                t_stress: s.t,
+                criterion,
+            });
+            circles.push(circle);
+        }
+    }
+    (reports, circles)
+}

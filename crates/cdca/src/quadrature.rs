@@ -78,6 +78,28 @@ pub fn collapsed_triangle_rule(apex: P2, b: P2, c: P2, n: usize, out: &mut Vec<Q
     }
 }
 
+/// Collapsed rule on triangle `(apex, b, c)` graded toward the apex: the
+/// radial coordinate is `u = s²`, Jacobian `2 s³ |(b−apex) × (c−apex)|`.
+/// Integrands like `r^(-1/2)` and `r^(-1)` near a crack tip at the apex
+/// become polynomials in `s`, so both the enriched stiffness (∝ 1/r) and its
+/// coupling with smooth fields (∝ 1/√r) are integrated accurately.
+pub fn graded_triangle_rule(apex: P2, b: P2, c: P2, n: usize, out: &mut Vec<QPoint>) {
+    let g = gauss_legendre(n);
+    let (eb, ec) = (b - apex, c - apex);
+    let det = (eb.x * ec.y - eb.y * ec.x).abs();
+    for &(sg, ws) in &g {
+        let s = 0.5 * (sg + 1.0);
+        let u = s * s;
+        for &(t, wt) in &g {
+            let v = 0.5 * (t + 1.0);
+            out.push(QPoint {
+                x: apex + u * ((1.0 - v) * eb + v * ec),
+                w: 0.25 * ws * wt * 2.0 * s * s * s * det,
+            });
+        }
+    }
+}
+
 /// Gauss rule with `n` points on the segment `ab`.
 pub fn segment_rule(a: P2, b: P2, n: usize, out: &mut Vec<QPoint>) {
     let half = 0.5 * (b - a).norm();
@@ -115,5 +137,25 @@ mod tests {
         let num: f64 = q.iter().map(|p| p.w / p.x.norm()).sum();
         let exact = 2f64.sqrt() * (1.0 + 2f64.sqrt()).ln();
         assert!((num - exact).abs() < 1e-6, "{num} vs {exact}");
+    }
+
+    #[test]
+    fn graded_rule_integrates_inverse_root_r() {
+        let mut q = Vec::new();
+        let (a, b, c) = (P2::new(0.0, 0.0), P2::new(1.0, 0.0), P2::new(0.0, 1.0));
+        graded_triangle_rule(a, b, c, 7, &mut q);
+        let area: f64 = q.iter().map(|p| p.w).sum();
+        assert!((area - 0.5).abs() < 1e-14);
+        // ∫ r^(-1/2) dA = ∫_0^{π/2} (2/3) (cos θ + sin θ)^(-3/2) dθ, by fine quadrature
+        let g = gauss_legendre(40);
+        let exact: f64 = g
+            .iter()
+            .map(|&(t, w)| {
+                let th = 0.25 * std::f64::consts::PI * (t + 1.0);
+                w * 0.25 * std::f64::consts::PI * (2.0 / 3.0) * (th.cos() + th.sin()).powf(-1.5)
+            })
+            .sum();
+        let num: f64 = q.iter().map(|p| p.w / p.x.norm().sqrt()).sum();
+        assert!((num - exact).abs() < 1e-10 * exact, "{num} vs {exact}");
     }
 }

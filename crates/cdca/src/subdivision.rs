@@ -7,19 +7,17 @@
 //! otherwise.
 
 use crate::geometry::{P2, polygon_area, polygon_centroid, split_convex};
-use crate::quadrature::{QPoint, box_rule, collapsed_triangle_rule};
+use crate::quadrature::{QPoint, box_rule, collapsed_triangle_rule, graded_triangle_rule};
 
 /// Gauss order per direction on the rectangle of an uncut element with no
 /// tip-enriched node.
 pub const ORDER_PLAIN: usize = 2;
-/// Order on uncut elements that carry tip enrichment (blending elements).
-pub const ORDER_TIP_ENRICHED: usize = 6;
 /// Collapsed order on triangles of cut elements without tip enrichment.
 pub const ORDER_CUT: usize = 3;
 /// Collapsed order on triangles of cut elements with tip enrichment.
-pub const ORDER_CUT_TIP_ENRICHED: usize = 5;
+pub const ORDER_CUT_TIP_ENRICHED: usize = 8;
 /// Collapsed order on triangles fanned from a tip.
-pub const ORDER_TIP: usize = 7;
+pub const ORDER_TIP: usize = 10;
 
 /// Splits the convex polygon `poly` along the lines `(point, direction)`;
 /// drops slivers below `min_area`.
@@ -40,23 +38,30 @@ pub fn split_by_lines(poly: &[P2], lines: &[(P2, P2)], eps: f64, min_area: f64) 
     pieces
 }
 
+/// Depth of the refinement of triangles near (not at) a tip.
+const NEAR_TIP_DEPTH: usize = 8;
+
 /// Quadrature of one element given its pieces.
 ///
-/// `tip`: a crack tip inside or on the element; `tip_enriched`: whether any
-/// node carries branch functions; `cut`: whether any crack touches it.
+/// `tip`: a crack tip inside or on the element; `near_tip`: the nearest
+/// tip of the branch functions its nodes carry (None without tip
+/// enrichment); `cut`: whether any crack touches it. Triangles of
+/// tip-enriched elements that do not touch the tip are refined while they
+/// are closer to the tip than their size, so that the `1/√r` variation of
+/// the branch-function gradients is resolved however close the tip is.
 pub fn element_rule(
     lo: P2,
     hi: P2,
     pieces: &[Vec<P2>],
     tip: Option<P2>,
-    tip_enriched: bool,
+    near_tip: Option<P2>,
     cut: bool,
     eps: f64,
 ) -> Vec<QPoint> {
     let mut q = Vec::new();
-    if !cut && tip.is_none() {
-        let n = if tip_enriched { ORDER_TIP_ENRICHED } else { ORDER_PLAIN };
-        box_rule(lo, hi, n, &mut q);
+    let tip_enriched = near_tip.is_some();
+    if !cut && tip.is_none() && !tip_enriched {
+        box_rule(lo, hi, ORDER_PLAIN, &mut q);
         return q;
     }
     let min_tri = 1e-14 * (hi.x - lo.x) * (hi.y - lo.y);
@@ -72,11 +77,43 @@ pub fn element_rule(
             let (b, c) = (piece[i], piece[(i + 1) % n]);
             let area = 0.5 * crate::geometry::cross(b - apex, c - apex).abs();
             if area > min_tri {
-                collapsed_triangle_rule(apex, b, c, order, &mut q);
+                match (apex_at_tip, near_tip) {
+                    (Some(_), _) => graded_triangle_rule(apex, b, c, order, &mut q),
+                    (None, Some(t)) => refined_rule([apex, b, c], t, NEAR_TIP_DEPTH, order, &mut q),
+                    (None, None) => collapsed_triangle_rule(apex, b, c, order, &mut q),
+                }
             }
         }
     }
     q
+}
+
+/// Collapsed Gauss on a triangle, split in four while it is closer to
+/// `tip` than its diameter (at most `depth` times).
+fn refined_rule(t: [P2; 3], tip: P2, depth: usize, order: usize, out: &mut Vec<QPoint>) {
+    let diam = (t[0] - t[1]).norm().max((t[1] - t[2]).norm()).max((t[2] - t[0]).norm());
+    if depth == 0 || distance_to_triangle(tip, &t) > diam {
+        collapsed_triangle_rule(t[0], t[1], t[2], order, out);
+        return;
+    }
+    let m = [0.5 * (t[0] + t[1]), 0.5 * (t[1] + t[2]), 0.5 * (t[2] + t[0])];
+    for sub in [[t[0], m[0], m[2]], [m[0], t[1], m[1]], [m[2], m[1], t[2]], [m[0], m[1], m[2]]] {
+        refined_rule(sub, tip, depth - 1, order, out);
+    }
+}
+
+/// Distance from `p` to a triangle (0 inside).
+fn distance_to_triangle(p: P2, t: &[P2; 3]) -> f64 {
+    let inside = {
+        let s: Vec<f64> = (0..3).map(|i| crate::geometry::cross(t[(i + 1) % 3] - t[i], p - t[i])).collect();
+        s.iter().all(|&v| v >= 0.0) || s.iter().all(|&v| v <= 0.0)
+    };
+    if inside {
+        return 0.0;
+    }
+    (0..3)
+        .map(|i| crate::geometry::distance_to_segment(p, t[i], t[(i + 1) % 3]))
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Whether point `t` lies in or on the convex polygon (within `eps`).
@@ -108,10 +145,11 @@ mod tests {
         let pieces = split_by_lines(&unit_square(), &lines, 1e-12, 1e-16);
         let area: f64 = pieces.iter().map(|p| polygon_area(p).abs()).sum();
         assert!((area - 1.0).abs() < 1e-12);
-        for (tip, te) in [(None, false), (None, true), (Some(P2::new(0.5, 0.4)), true)] {
-            let q = element_rule(P2::zeros(), P2::new(1.0, 1.0), &pieces, tip, te, true, 1e-12);
+        let t = Some(P2::new(0.5, 0.4));
+        for (tip, near) in [(None, None), (None, Some(P2::new(0.5, 1.01))), (t, t)] {
+            let q = element_rule(P2::zeros(), P2::new(1.0, 1.0), &pieces, tip, near, true, 1e-12);
             let a: f64 = q.iter().map(|p| p.w).sum();
-            assert!((a - 1.0).abs() < 1e-12, "{tip:?} {te}: {a}");
+            assert!((a - 1.0).abs() < 1e-12, "{tip:?} {near:?}: {a}");
         }
     }
 

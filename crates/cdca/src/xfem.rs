@@ -172,8 +172,22 @@ impl Xfem {
                 })
                 .unwrap_or_default();
             let pieces = split_by_lines(&m.element_polygon(e), &lines, eps, 1e-14 * m.hx * m.hy);
-            let tip_enriched = enrs.iter().any(|e| matches!(e, Enrichment::Tip { .. }));
-            let qps = element_rule(lo, hi, &pieces, tips.get(&e).copied(), tip_enriched, !lines.is_empty(), eps);
+            let centre = 0.5 * (lo + hi);
+            let near_tip = enrs
+                .iter()
+                .filter_map(|en| match *en {
+                    Enrichment::Tip { crack, tip } => Some(self.funcs.cracks[crack].tip_point(tip)),
+                    Enrichment::Heaviside { .. } => None,
+                })
+                .min_by(|a, b| (a - centre).norm().total_cmp(&(b - centre).norm()));
+            let pieces = if lines.is_empty() && near_tip.is_some() {
+                // an uncut tip-enriched element: two triangles, refined near the tip
+                let p = m.element_polygon(e);
+                vec![vec![p[0], p[1], p[2]], vec![p[0], p[2], p[3]]]
+            } else {
+                pieces
+            };
+            let qps = element_rule(lo, hi, &pieces, tips.get(&e).copied(), near_tip, true, eps);
             let mut el = EnrichedElement {
                 elem: e,
                 enrs,

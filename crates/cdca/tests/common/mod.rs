@@ -1,0 +1,69 @@
+//! Scene builders and a one-call solve shared by the verification tests.
+#![allow(dead_code)]
+
+use cdca::report::SolveReport;
+use cdca::scene::{
+    Boundary, CrackSpec, Fix, Material, MeshSpec, Plane, PointSupport, Scene, SideBc, Specimen,
+};
+use cdca::Simulation;
+
+pub const PI: f64 = std::f64::consts::PI;
+
+/// A `w × h` plate, steel-like, plane strain, no cracks, free sides.
+pub fn plate(w: f64, h: f64, nx: usize, ny: usize) -> Scene {
+    Scene {
+        name: "test".into(),
+        description: String::new(),
+        specimen: Specimen { width: w, height: h, thickness: 1.0 },
+        mesh: MeshSpec { nx, ny, enrichment_radius: None },
+        material: Material {
+            young: 200e9,
+            poisson: 0.3,
+            plane: Plane::Strain,
+            cohesion: 15e6,
+            friction_angle_deg: 30.0,
+            k_ic: 1e6,
+            k_iic: 1e6,
+            tensile_strength: None,
+        },
+        cracks: Vec::new(),
+        boundary: Boundary {
+            bottom: SideBc::Free,
+            left: SideBc::Free,
+            top: SideBc::Free,
+            right: SideBc::Free,
+            points: Vec::new(),
+        },
+        criterion: Default::default(),
+        growth: Default::default(),
+        solver: Default::default(),
+    }
+}
+
+/// Uniform tension `s` on top and bottom, rigid motion removed by two
+/// points at mid-height of the left and right sides.
+pub fn tension_top_bottom(scene: &mut Scene, s: f64) {
+    let (w, h) = (scene.specimen.width, scene.specimen.height);
+    scene.boundary.top = SideBc::Traction { normal: s, shear: 0.0 };
+    scene.boundary.bottom = SideBc::Traction { normal: s, shear: 0.0 };
+    scene.boundary.points = vec![
+        PointSupport { at: [0.0, 0.5 * h], fix: Fix::Xy },
+        PointSupport { at: [w, 0.5 * h], fix: Fix::Y },
+    ];
+}
+
+/// Straight crack through `(cx, cy)` of half-length `a` at `deg` to +x.
+pub fn centre_crack(cx: f64, cy: f64, a: f64, deg: f64) -> CrackSpec {
+    let (s, c) = deg.to_radians().sin_cos();
+    CrackSpec::segment([cx - a * c, cy - a * s], [cx + a * c, cy + a * s])
+}
+
+pub fn solve(scene: Scene) -> SolveReport {
+    let mut sim = Simulation::new(scene).expect("valid scene");
+    sim.solve().expect("solve")
+}
+
+/// Relative difference.
+pub fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}

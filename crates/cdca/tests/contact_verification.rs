@@ -1,0 +1,225 @@
+//! Verification of frictional contact on closed crack faces (issue:
+//! contact). Reference: a closed centre crack of half-length a at 45° in a
+//! large plate (a/b = 0.1) under biaxial compression P_V, P_H = k P_V, with
+//! τ = P_V(1−k)/2 and σ_n = P_V(1+k)/2 resolved on the crack plane:
+//! `K_II = (τ − μσ_n − c_c)√(πa)` when positive (sliding), `K_II = 0` when
+//! the crack sticks, `K_I = 0` (closed).
+
+mod common;
+
+use cdca::report::SolveReport;
+use cdca::scene::{Plane, Scene, SideBc};
+use cdca::{ContactState, Simulation};
+use common::*;
+
+const A: f64 = 0.05;
+const N: usize = 100;
+
+/// 1 m plate, 45° crack of half-length 0.05 at the centre, rollers on the
+/// bottom and left, `-p` on top and `-k p` on the right.
+fn biaxial(k: f64, mu: f64, cohesion: f64, kn_h_over_e: Option<f64>, p: f64) -> Scene {
+    biaxial_on(N, k, mu, cohesion, kn_h_over_e, p)
+}
+
+fn biaxial_on(n: usize, k: f64, mu: f64, cohesion: f64, kn_h_over_e: Option<f64>, p: f64) -> Scene {
+    let mut s = plate(1.0, 1.0, n, n);
+    s.material.young = 4.78e9;
+    s.material.poisson = 0.25;
+    s.material.plane = Plane::Stress;
+    s.boundary.bottom = SideBc::Roller;
+    s.boundary.left = SideBc::Roller;
+    s.boundary.top = SideBc::Traction { normal: -p, shear: 0.0 };
+    s.boundary.right = SideBc::Traction { normal: -k * p, shear: 0.0 };
+    let mut c = centre_crack(0.5 + 1e-4, 0.5, A, 45.0);
+    c.friction = mu;
+    c.cohesion = cohesion;
+    if let Some(alpha) = kn_h_over_e {
+        let kn = alpha * s.material.young / (1.0 / n as f64);
+        c.normal_stiffness = Some(kn);
+        c.shear_stiffness = Some(0.1 * kn);
+    }
+    s.cracks.push(c);
+    s
+}
+
+fn resolved(k: f64, p: f64) -> (f64, f64) {
+    (p * (1.0 - k) / 2.0, p * (1.0 + k) / 2.0)
+}
+
+fn k2_exact(k: f64, mu: f64, c: f64, p: f64) -> f64 {
+    let (tau, sn) = resolved(k, p);
+    (tau - mu * sn - c).max(0.0) * (PI * A).sqrt()
+}
+
+/// K_II within 3% of `(τ − μσ_n)√(πa)` over k ∈ {0, 0.1, 0.2} × μ ∈ {0, 0.2,
+/// 0.32, 0.5}; |K_I| < 2% of σ_n√(πa); with μ ≥ (1−k)/(1+k) the crack sticks
+/// and |K_II| < 2% of τ√(πa). A sticking crack still shears elastically by
+/// τ/k_T (the default k_T = 10 E/h), which leaves K_II ∝ h: the sticking
+/// cases run on a finer mesh (160 across, a = 8h).
+#[test]
+fn closed_crack_k2_table() {
+    let p = 10e6;
+    let root = (PI * A).sqrt();
+    let mut cases: Vec<(f64, f64)> = Vec::new();
+    for k in [0.0, 0.1, 0.2] {
+        for mu in [0.0, 0.2, 0.32, 0.5] {
+            cases.push((k, mu));
+        }
+    }
+    cases.push((0.2, 0.83));
+    cases.push((0.0, 1.2));
+    println!("   k     μ   K_II/(τ√πa)  exact   error   K_I/(σn√πa)  contact");
+    for (k, mu) in cases {
+        let sticks = mu >= (1.0 - k) / (1.0 + k);
+        let r = solve(biaxial_on(if sticks { 160 } else { N }, k, mu, 0.0, None, p));
+        let (tau, sn) = resolved(k, p);
+        let exact = k2_exact(k, mu, 0.0, p);
+        assert!(r.contact.converged, "k {k} μ {mu}: {:?}", r.contact);
+        for t in &r.tips {
+            let err = if exact > 0.0 { rel(t.k2.abs(), exact) } else { t.k2.abs() / (tau * root) };
+            println!(
+                "{k:5.2} {mu:5.2}  {:10.4}  {:7.4}  {err:7.4}  {:10.4}   it {} stick {} slip {}",
+                t.k2.abs() / (tau * root),
+                exact / (tau * root),
+                t.k1 / (sn * root),
+                r.contact.iterations,
+                r.contact.stick,
+                r.contact.slip
+            );
+            let tol = if exact > 0.0 { 0.03 } else { 0.02 };
+            assert!(err < tol, "k {k} μ {mu}: K_II {:.4e} vs {exact:.4e}", t.k2);
+            assert!(t.k1.abs() < 0.02 * sn * root, "k {k} μ {mu}: K_I {:.4e}", t.k1);
+        }
+        if exact == 0.0 {
+            assert_eq!(r.contact.slip, 0, "a sticking crack has no slip point");
+        }
+    }
+}
+
+/// Face cohesion c_c lowers K_II by `c_c√(πa)` (within 3%).
+#[test]
+fn face_cohesion_lowers_k2() {
+    let (p, k, mu, c) = (10e6, 0.1, 0.2, 1e6);
+    let without = solve(biaxial(k, mu, 0.0, None, p));
+    let with = solve(biaxial(k, mu, c, None, p));
+    for (a, b) in without.tips.iter().zip(&with.tips) {
+        let drop = a.k2.abs() - b.k2.abs();
+        assert!(rel(drop, c * (PI * A).sqrt()) < 0.03, "drop {drop:.4e}");
+        assert!(rel(b.k2.abs(), k2_exact(k, mu, c, p)) < 0.03);
+    }
+}
+
+/// The slip of a frictionless sliding crack follows the elliptical profile
+/// `δ(s) = 4τ/E' √(a² − s²)` within 5% for |s| ≤ 0.7a.
+#[test]
+fn slip_profile_is_elliptical() {
+    let p = 10e6;
+    let mut sim = Simulation::new(biaxial(0.0, 0.0, 0.0, None, p)).expect("valid");
+    sim.solve().expect("solve");
+    let (tau, _) = resolved(0.0, p);
+    let mut checked = 0;
+    for cp in sim.contact_points() {
+        let s = ((cp.x - 0.5 - 1e-4).powi(2) + (cp.y - 0.5).powi(2)).sqrt();
+        if s > 0.7 * A {
+            continue;
+        }
+        let exact = 4.0 * tau / 4.78e9 * (A * A - s * s).sqrt();
+        assert!(rel(cp.slip.abs(), exact) < 0.05, "s = {s:.4}: slip {:.4e} vs {exact:.4e}", cp.slip);
+        checked += 1;
+    }
+    assert!(checked >= 6, "only {checked} points checked");
+}
+
+/// An open crack in tension with contact switched on: every point open,
+/// one contact iteration, and K identical (1e-10) to the solve without
+/// contact (direct linear solve, no face term).
+#[test]
+fn open_crack_costs_nothing_and_matches_no_contact() {
+    let mut s = plate(1.0, 1.0, 60, 60);
+    tension_top_bottom(&mut s, 1e6);
+    let mut c = centre_crack(0.5, 0.5, 0.1, 30.0);
+    c.friction = 0.6;
+    s.cracks.push(c);
+    let mut sim = Simulation::new(s.clone()).expect("valid");
+    let r = sim.solve().expect("solve");
+    assert_eq!(r.contact.iterations, 1);
+    assert_eq!(r.contact.stick + r.contact.slip, 0);
+    assert!(r.contact.open > 0);
+    // without contact: the plain linear problem
+    let model = cdca::model::Model::new(s.clone());
+    let x = model.discretise(model.initial_cracks());
+    let f = cdca::loads::traction_forces(&x, &s.boundary);
+    let u = cdca::direct::Factor::new(&x, &[]).expect("factor").solve(&f).expect("solve");
+    let field = cdca::field::Field { xfem: &x, u: &u };
+    for t in &r.tips {
+        let frame = cdca::cracks::TipFrame::of(&x.funcs.cracks[t.crack], t.tip);
+        let plain = cdca::sif::tip_sifs(&field, t.crack, &frame, cdca::tips::DOMAIN_RADIUS * x.mesh.h(), &[]);
+        assert!(rel(t.k1, plain.k1) < 1e-10 && rel(t.k2, plain.k2) < 1e-10, "{t:?} vs {plain:?}");
+    }
+}
+
+/// Doubling every load doubles K to 1e-8 (friction, no cohesion: the
+/// problem is positively homogeneous of degree one).
+#[test]
+fn doubling_the_load_doubles_k() {
+    let a = solve(biaxial(0.1, 0.32, 0.0, None, 10e6));
+    let b = solve(biaxial(0.1, 0.32, 0.0, None, 20e6));
+    for (x, y) in a.tips.iter().zip(&b.tips) {
+        assert!(rel(y.k2, 2.0 * x.k2) < 1e-8 && rel(y.k1, 2.0 * x.k1) < 1e-7, "{} {}", x.k2, y.k2);
+    }
+}
+
+fn finite(r: &SolveReport) -> bool {
+    r.tips.iter().all(|t| t.k1.is_finite() && t.k2.is_finite() && t.t_stress.is_finite())
+        && r.contact.residual.is_finite()
+}
+
+/// Stiff and extreme cases: penalty k_N h/E from 1 to 1e6, μ from 0 to 10,
+/// loads from 1 Pa to 1 GPa. Every run ends with an explicit status and
+/// finite numbers; the K_II error is printed (a table for the notes) and,
+/// for stiff enough penalties (k_N h/E ≥ 100) and a sliding crack, stays
+/// within 3%.
+#[test]
+fn stiff_and_extreme_cases_end_cleanly() {
+    println!("k_N h/E      μ       P [Pa]   status     it  cyc   K_II error");
+    for alpha in [1.0, 1e2, 1e4, 1e6] {
+        for mu in [0.0, 0.32, 10.0] {
+            for p in [1.0, 10e6, 1e9] {
+                let mut sim = Simulation::new(biaxial(0.2, mu, 0.0, Some(alpha), p)).expect("valid");
+                let r = sim.solve().expect("an explicit status, not an error");
+                assert!(finite(&r), "α {alpha} μ {mu} p {p}: {r:?}");
+                let exact = k2_exact(0.2, mu, 0.0, p);
+                let (tau, _) = resolved(0.2, p);
+                let k2 = r.tips[0].k2.abs();
+                let err = if exact > 0.0 { rel(k2, exact) } else { k2 / (tau * (PI * A).sqrt()) };
+                println!(
+                    "{alpha:8.0e} {mu:6.2} {p:12.0e}   {:9} {:3} {:4}   {err:.4}",
+                    if r.contact.converged { "converged" } else { "NOT conv." },
+                    r.contact.iterations,
+                    r.contact.cycling
+                );
+                if alpha >= 1e2 && r.contact.converged {
+                    assert!(err < 0.03, "α {alpha} μ {mu} p {p}: error {err}");
+                }
+            }
+        }
+    }
+}
+
+/// A case built on the stick/slip threshold (μ = (1−k)/(1+k), τ = μσ_n)
+/// terminates with an explicit status and reports how many points cycled.
+#[test]
+fn threshold_case_terminates() {
+    let k = 0.2;
+    let mu = (1.0 - k) / (1.0 + k);
+    let mut sim = Simulation::new(biaxial(k, mu, 0.0, None, 10e6)).expect("valid");
+    let r = sim.solve().expect("explicit status");
+    assert!(r.contact.iterations <= 50);
+    assert!(finite(&r));
+    println!("threshold: converged {} iterations {} cycling {} stick {} slip {}", r.contact.converged, r.contact.iterations, r.contact.cycling, r.contact.stick, r.contact.slip);
+    let (tau, _) = resolved(k, 10e6);
+    assert!(r.tips.iter().all(|t| t.k2.abs() < 0.05 * tau * (PI * A).sqrt()));
+    let states: Vec<ContactState> = sim.contact_points().iter().map(|c| c.state).collect();
+    assert!(states.iter().all(|s| *s != ContactState::Open));
+}
+

@@ -1,0 +1,382 @@
+//! The workbench application: state, layout, and the per-frame logic that
+//! applies the UI's commands and runs solver work inside the frame budget.
+
+use std::sync::{Arc, Mutex};
+
+use cdca::{CriterionCurve, Scene};
+use egui::Ui;
+use web_time::{Duration, Instant};
+
+pub use crate::canvas::CANVAS_LABEL;
+use crate::canvas::{Canvas, CanvasInput, ViewSettings};
+use crate::command::Command;
+use crate::compare::Comparison;
+use crate::edit::{Editor, UndoStack};
+use crate::field::{FieldKey, FieldKind};
+use crate::panels::{self, FrameStats, PlotTab};
+use crate::persist::Persisted;
+use crate::runner::{RunMode, Runner};
+use crate::scenes;
+
+/// Solver work per frame (the rest of a 60 Hz frame is left to drawing).
+pub const FRAME_BUDGET: Duration = Duration::from_millis(12);
+
+/// How the app starts.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// Solve the first scene in the first frame.
+    pub solve_on_start: bool,
+    /// Re-solve after an edit when the solve is quick.
+    pub auto_solve: bool,
+    /// The scene to start on (None: the default scene).
+    pub scene: Option<Scene>,
+    /// Where that scene came from.
+    pub scene_source: String,
+    pub view: ViewSettings,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            solve_on_start: true,
+            auto_solve: true,
+            scene: None,
+            scene_source: scenes::DEFAULT_TITLE.to_owned(),
+            view: ViewSettings::default(),
+        }
+    }
+}
+
+/// A message shown above the canvas until dismissed.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Message {
+    Error(String),
+    Info(String),
+}
+
+/// σ_θθ and τ_rθ around the inspected tip, for the solution `version`.
+pub struct TipCurve {
+    pub tip: usize,
+    pub version: u64,
+    pub curve: Option<CriterionCurve>,
+}
+
+/// The whole application.
+pub struct WorkbenchApp {
+    pub(crate) scene: Scene,
+    pub(crate) scene_source: String,
+    pub(crate) runner: Runner,
+    pub(crate) undo: UndoStack,
+    pub(crate) editor: Editor,
+    pub(crate) canvas: Canvas,
+    pub(crate) settings: ViewSettings,
+    pub(crate) commands: Vec<Command>,
+    pub(crate) message: Option<Message>,
+    pub(crate) selected_tip: Option<usize>,
+    pub(crate) tip_curve: Option<TipCurve>,
+    pub(crate) plot_tab: PlotTab,
+    pub(crate) comparison: Option<Comparison>,
+    pub(crate) options: Options,
+    pub(crate) started: bool,
+    pub(crate) frame_stats: FrameStats,
+    frame_start: Option<Instant>,
+    /// A canvas screenshot on its way (PNG export).
+    pub(crate) screenshot: Arc<Mutex<Option<Arc<egui::ColorImage>>>>,
+    pub(crate) screenshot_rect: Option<egui::Rect>,
+}
+
+impl WorkbenchApp {
+    pub fn new(options: Options) -> Self {
+        let scene = options.scene.clone().unwrap_or_else(scenes::default_scene);
+        let mut runner = Runner::default();
+        let message = runner.invalidate(&scene).err().map(Message::Error);
+        Self {
+            scene_source: options.scene_source.clone(),
+            scene,
+            runner,
+            undo: UndoStack::default(),
+            editor: Editor::default(),
+            canvas: Canvas::default(),
+            settings: options.view.clone(),
+            commands: Vec::new(),
+            message,
+            selected_tip: None,
+            tip_curve: None,
+            plot_tab: PlotTab::default(),
+            comparison: None,
+            options,
+            started: false,
+            frame_stats: FrameStats::default(),
+            frame_start: None,
+            screenshot: Arc::default(),
+            screenshot_rect: None,
+        }
+    }
+
+    /// The native and web entry: restores the last scene and view settings.
+    pub fn from_creation_context(cc: &eframe::CreationContext<'_>) -> Self {
+        let saved = Persisted::load(cc.storage);
+        let scene = saved
+            .scene_json
+            .as_deref()
+            .and_then(|j| Scene::from_json(j).ok());
+        let source = if scene.is_some() && !saved.scene_source.is_empty() {
+            saved.scene_source
+        } else {
+            scenes::DEFAULT_TITLE.to_owned()
+        };
+        Self::new(Options {
+            scene,
+            scene_source: source,
+            view: saved.view,
+            ..Options::default()
+        })
+    }
+
+    // --- read access for tests and panels -------------------------------
+
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+    pub fn message(&self) -> Option<&Message> {
+        self.message.as_ref()
+    }
+    pub fn run_mode(&self) -> RunMode {
+        self.runner.mode
+    }
+    /// Residual samples of the current relaxation.
+    pub fn residual_samples(&self) -> usize {
+        self.runner.view.residual_samples
+    }
+    /// Crack polylines as simulated (grown), empty before a solve.
+    pub fn simulated_cracks(&self) -> &[Vec<[f64; 2]>] {
+        &self.runner.view.cracks
+    }
+    pub fn growth_steps(&self) -> usize {
+        self.runner.view.history.len()
+    }
+    pub fn is_solved(&self) -> bool {
+        self.runner.view.solved
+    }
+    /// The sampled field currently shown, if complete.
+    pub fn field_is_shown(&self) -> bool {
+        self.runner.field.current().is_some()
+    }
+    pub fn frame_stats(&self) -> &FrameStats {
+        &self.frame_stats
+    }
+    /// Where a specimen point (m) is on screen.
+    pub fn screen_from_world(&self, p: [f64; 2]) -> egui::Pos2 {
+        self.canvas.view.screen_from_world(p)
+    }
+    /// Queues a command as if a panel had pushed it.
+    pub fn push(&mut self, cmd: Command) {
+        self.commands.push(cmd);
+    }
+
+    // --- per frame -------------------------------------------------------
+
+    /// Applies the queued commands, then spends the frame's solver budget.
+    pub fn logic(&mut self, ctx: &egui::Context) {
+        self.frame_start = Some(Instant::now());
+        self.take_dropped_files(ctx);
+        for cmd in std::mem::take(&mut self.commands) {
+            self.run_cmd(ctx, cmd);
+        }
+        if !self.started {
+            self.started = true;
+            if self.options.solve_on_start {
+                self.run_cmd(ctx, Command::Solve);
+            }
+        }
+        self.finish_screenshot(ctx);
+        let deadline = Instant::now() + FRAME_BUDGET;
+        if let Some(c) = self.comparison.as_mut().filter(|c| !c.finished()) {
+            c.tick(deadline);
+        } else if let Err(e) = self.runner.tick(FRAME_BUDGET, self.field_key()) {
+            self.message = Some(Message::Error(e));
+        }
+        self.refresh_tip_curve();
+        let busy = self.runner.mode != RunMode::Paused
+            || self.comparison.as_ref().is_some_and(|c| !c.finished())
+            || self
+                .field_key()
+                .is_some_and(|k| !self.runner.field.is_current(&k));
+        if busy || !self.commands.is_empty() {
+            ctx.request_repaint();
+        }
+    }
+
+    /// The field the canvas wants, if any.
+    fn field_key(&self) -> Option<FieldKey> {
+        let s = &self.settings;
+        let wanted = s.field != FieldKind::None || s.deformed;
+        let sim = self.runner.simulation()?;
+        let scene = sim.scene();
+        let k = s.samples_per_cell.clamp(1, 4);
+        (wanted && self.runner.view.solved).then(|| FieldKey {
+            version: self.runner.view.version,
+            cols: scene.mesh.nx * k,
+            rows: scene.mesh.ny * k,
+            width: scene.specimen.width,
+            height: scene.specimen.height,
+            with_displacement: s.deformed || s.field == FieldKind::Displacement,
+        })
+    }
+
+    fn refresh_tip_curve(&mut self) {
+        let version = self.runner.view.version;
+        match self.selected_tip {
+            None => self.tip_curve = None,
+            Some(tip) => {
+                if self
+                    .tip_curve
+                    .as_ref()
+                    .is_some_and(|c| c.tip == tip && c.version == version)
+                {
+                    return;
+                }
+                let curve = self
+                    .runner
+                    .simulation()
+                    .and_then(|s| s.criterion_curve(tip));
+                self.tip_curve = Some(TipCurve {
+                    tip,
+                    version,
+                    curve,
+                });
+            }
+        }
+    }
+
+    /// Scene files dropped on the window open like File ▸ Open.
+    fn take_dropped_files(&mut self, ctx: &egui::Context) {
+        for file in ctx.input(|i| i.raw.dropped_files.clone()) {
+            match crate::io::read_dropped(&file) {
+                Ok(f) => self.commands.push(Command::OpenSceneText {
+                    source: f.name,
+                    text: f.text,
+                }),
+                Err(e) => self.message = Some(Message::Error(e)),
+            }
+        }
+    }
+
+    /// The whole UI. Panels read state and push commands.
+    pub fn ui(&mut self, ui: &mut Ui) {
+        let mut cmds = Vec::new();
+        egui::Panel::top("menu").show(ui, |ui| {
+            panels::menu::menu_bar_ui(ui, self, &mut cmds);
+        });
+        egui::Panel::top("toolbar").show(ui, |ui| {
+            panels::menu::toolbar_ui(ui, self, &mut cmds);
+        });
+        egui::Panel::left("scene")
+            .resizable(true)
+            .default_size(280.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    panels::scene::scene_ui(
+                        ui,
+                        &self.scene,
+                        &self.runner.view,
+                        &mut self.editor,
+                        &mut cmds,
+                    );
+                });
+            });
+        egui::Panel::right("solver")
+            .resizable(true)
+            .default_size(300.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    panels::solver::solver_ui(ui, self, &mut cmds);
+                    ui.separator();
+                    panels::tip::tip_ui(ui, self, &mut cmds);
+                });
+            });
+        egui::Panel::bottom("plots")
+            .resizable(true)
+            .default_size(220.0)
+            .show(ui, |ui| {
+                panels::plots::plots_ui(ui, self, &mut cmds);
+            });
+        egui::CentralPanel::default().show(ui, |ui| {
+            panels::menu::message_ui(ui, self.message.as_ref(), &mut cmds);
+            let input = CanvasInput {
+                scene: &self.scene,
+                solution: &self.runner.view,
+                field: self.runner.field.current(),
+                settings: &self.settings,
+                selected_tip: self.selected_tip,
+            };
+            let response = self.canvas.ui(ui, &input, &mut self.editor, &mut cmds);
+            self.screenshot_rect = Some(response.rect);
+            if self.settings.frame_overlay {
+                panels::menu::frame_overlay_ui(ui, response.rect, &self.frame_stats);
+            }
+        });
+        if !cmds.is_empty() {
+            ui.ctx().request_repaint();
+        }
+        self.commands.extend(cmds);
+        if let Some(start) = self.frame_start.take() {
+            let dt = ui.input(|i| i.unstable_dt);
+            self.frame_stats.record(
+                start.elapsed().as_secs_f64(),
+                self.runner.frame_solver_seconds,
+                f64::from(dt),
+            );
+        }
+    }
+
+    /// Starts a PNG export of the canvas: the image arrives a frame later.
+    pub(crate) fn request_canvas_png(&self, ctx: &egui::Context) {
+        let slot = Arc::clone(&self.screenshot);
+        ctx.send_viewport_cmd(egui::ViewportCommand::Screenshot(
+            egui::ScreenshotCallback::new(move |image| {
+                if let Ok(mut s) = slot.lock() {
+                    *s = Some(image);
+                }
+            }),
+        ));
+    }
+
+    fn finish_screenshot(&mut self, ctx: &egui::Context) {
+        let image = self.screenshot.lock().ok().and_then(|mut s| s.take());
+        let (Some(image), Some(rect)) = (image, self.screenshot_rect) else {
+            return;
+        };
+        let cropped = image.region(&rect, Some(ctx.pixels_per_point()));
+        let result = crate::export::png_bytes(&cropped)
+            .and_then(|bytes| crate::io::save_dialog("canvas.png", ("PNG image", "png"), &bytes));
+        self.report_save(result);
+    }
+
+    pub(crate) fn report_save(&mut self, result: Result<Option<String>, String>) {
+        match result {
+            Ok(Some(path)) => self.message = Some(Message::Info(format!("Saved {path}"))),
+            Ok(None) => {}
+            Err(e) => self.message = Some(Message::Error(e)),
+        }
+    }
+}
+
+impl eframe::App for WorkbenchApp {
+    fn logic(&mut self, ctx: &egui::Context, _frame: &mut eframe::Frame) {
+        WorkbenchApp::logic(self, ctx);
+    }
+
+    fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
+        WorkbenchApp::ui(self, ui);
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        Persisted {
+            scene_json: Some(self.scene.to_json()),
+            scene_source: self.scene_source.clone(),
+            view: self.settings.clone(),
+        }
+        .store(storage);
+    }
+}

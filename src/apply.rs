@@ -1,0 +1,259 @@
+//! Applying the UI's commands to the app: edits with undo, opening scenes,
+//! solver actions and exports.
+
+use cdca::Scene;
+
+use crate::app::{Message, WorkbenchApp};
+use crate::command::{Command, Export};
+use crate::compare::Comparison;
+use crate::runner::RunMode;
+use crate::{export, io, scenes};
+
+impl WorkbenchApp {
+    pub(crate) fn run_cmd(&mut self, ctx: &egui::Context, cmd: Command) {
+        match cmd {
+            Command::SetScene { scene, ongoing } => {
+                if *scene == self.scene {
+                    if !ongoing {
+                        self.undo.end_coalescing();
+                    }
+                    return;
+                }
+                self.undo.record(&self.scene, ongoing);
+                self.scene = *scene;
+                self.scene_changed(ongoing);
+            }
+            Command::EndDrag => {
+                self.undo.end_coalescing();
+                self.scene_changed(false);
+            }
+            Command::OpenSceneText { source, text } => self.open_scene_text(source, &text),
+            Command::OpenBundled(i) => {
+                if let Some(b) = scenes::BUNDLED.get(i) {
+                    self.open_scene_text(b.title.to_owned(), b.json);
+                }
+            }
+            Command::OpenDialog => match io::open_scene_dialog() {
+                Ok(Some(file)) => self.open_scene_text(file.name, &file.text),
+                Ok(None) => {}
+                Err(e) => self.message = Some(Message::Error(e)),
+            },
+            Command::Export(what) => self.export(ctx, what),
+            Command::Undo => {
+                if let Some(s) = self.undo.undo(&self.scene) {
+                    self.scene = s;
+                    self.scene_changed(false);
+                }
+            }
+            Command::Redo => {
+                if let Some(s) = self.undo.redo(&self.scene) {
+                    self.scene = s;
+                    self.scene_changed(false);
+                }
+            }
+            Command::Solve => {
+                if self.ensure_simulation() {
+                    let r = self.runner.solve();
+                    self.show_error(r);
+                }
+            }
+            Command::Step => {
+                if self.ensure_simulation() {
+                    let r = self.runner.step();
+                    self.show_error(r);
+                }
+            }
+            Command::Relax => {
+                if self.ensure_simulation() {
+                    self.runner.mode = RunMode::Relaxing;
+                }
+            }
+            Command::GrowOne => {
+                if self.ensure_simulation() {
+                    let r = self.runner.grow_one();
+                    self.show_error(r);
+                }
+            }
+            Command::RunGrowth => {
+                if self.ensure_simulation() {
+                    self.runner.mode = RunMode::Growing;
+                }
+            }
+            Command::Pause => self.runner.mode = RunMode::Paused,
+            Command::Reset => {
+                let valid = self.runner.invalidate(&self.scene);
+                self.show_validity(valid);
+                self.auto_solve();
+            }
+            Command::CompareSolvers(kinds) => {
+                self.runner.mode = RunMode::Paused;
+                self.comparison = Some(Comparison::new(&self.scene, &kinds));
+            }
+            Command::SelectTip(tip) => self.selected_tip = tip,
+            Command::DismissMessage => self.message = None,
+        }
+    }
+
+    fn show_error(&mut self, result: Result<(), String>) {
+        if let Err(e) = result {
+            self.message = Some(Message::Error(e));
+        }
+    }
+
+    /// A simulation of the current scene exists (rebuilt if the scene changed).
+    fn ensure_simulation(&mut self) -> bool {
+        if self.runner.stale || self.runner.simulation().is_none() {
+            self.rebuild();
+        }
+        self.runner.simulation().is_some()
+    }
+
+    fn rebuild(&mut self) {
+        self.selected_tip = None;
+        self.tip_curve = None;
+        let result = self.runner.rebuild(&self.scene);
+        self.show_validity(result);
+    }
+
+    /// Shows why the scene cannot be simulated, or clears an old error.
+    fn show_validity(&mut self, result: Result<(), String>) {
+        match result {
+            Ok(()) => {
+                if matches!(self.message, Some(Message::Error(_))) {
+                    self.message = None;
+                }
+            }
+            Err(e) => {
+                self.message = Some(Message::Error(format!(
+                    "The scene cannot be simulated: {e}"
+                )))
+            }
+        }
+    }
+
+    fn auto_solve(&mut self) {
+        if self.options.auto_solve && self.runner.solve_is_quick(&self.scene) {
+            if self.runner.stale || self.runner.simulation().is_none() {
+                self.rebuild();
+            }
+            if self.runner.simulation().is_some() {
+                let r = self.runner.solve();
+                self.show_error(r);
+            }
+        }
+    }
+
+    /// The edited scene changed. While a drag goes on, the old solution is
+    /// hidden; when it ends, the simulation is rebuilt and re-solved if that
+    /// is quick.
+    fn scene_changed(&mut self, ongoing: bool) {
+        self.comparison = None;
+        self.selected_tip = None;
+        self.tip_curve = None;
+        if self
+            .editor
+            .selected_crack
+            .is_some_and(|i| i >= self.scene.cracks.len())
+        {
+            self.editor.selected_crack = None;
+        }
+        let valid = self.runner.invalidate(&self.scene);
+        if !ongoing {
+            let ok = valid.is_ok();
+            self.show_validity(valid);
+            if ok {
+                self.auto_solve();
+            }
+        }
+    }
+
+    /// Opens a scene file's text; a bad file leaves everything as it was.
+    fn open_scene_text(&mut self, source: String, text: &str) {
+        match Scene::from_json(text) {
+            Ok(scene) => {
+                self.undo.record(&self.scene, false);
+                self.scene = scene;
+                self.scene_source = source;
+                self.canvas.fit_requested = true;
+                self.editor = crate::edit::Editor::default();
+                self.message = None;
+                self.scene_changed(false);
+            }
+            Err(e) => {
+                self.message = Some(Message::Error(format!(
+                    "Could not open {source}: {e}. The current scene is unchanged."
+                )));
+            }
+        }
+    }
+
+    fn export(&mut self, ctx: &egui::Context, what: Export) {
+        let stem = file_stem(&self.scene);
+        let result = match what {
+            Export::Scene => io::save_dialog(
+                &format!("{stem}.json"),
+                ("Scene (JSON)", "json"),
+                self.scene.to_json().as_bytes(),
+            ),
+            Export::CrackPaths => {
+                let cracks = if self.runner.view.cracks.is_empty() {
+                    let h = self.scene.element_size();
+                    self.scene.cracks.iter().map(|c| c.polyline(h)).collect()
+                } else {
+                    self.runner.view.cracks.clone()
+                };
+                io::save_dialog(
+                    &format!("{stem}_cracks.csv"),
+                    ("CSV", "csv"),
+                    export::crack_paths_csv(&cracks).as_bytes(),
+                )
+            }
+            Export::History => io::save_dialog(
+                &format!("{stem}_history.csv"),
+                ("CSV", "csv"),
+                export::history_csv(&self.runner.view.history).as_bytes(),
+            ),
+            Export::Fields => match self.runner.simulation().filter(|_| self.runner.view.solved) {
+                None => Err("solve the scene before exporting its fields".to_owned()),
+                Some(sim) => {
+                    let vtu = export::fields_vtu(
+                        sim.scene(),
+                        |p| sim.displacement_at(p),
+                        |p| sim.stress_at(p),
+                    );
+                    io::save_dialog(
+                        &format!("{stem}.vtu"),
+                        ("VTK unstructured grid", "vtu"),
+                        vtu.as_bytes(),
+                    )
+                }
+            },
+            Export::CanvasPng => {
+                self.request_canvas_png(ctx);
+                Ok(None)
+            }
+        };
+        self.report_save(result);
+    }
+}
+
+/// A file name from the scene's name: lowercase letters, digits and `_`.
+fn file_stem(scene: &Scene) -> String {
+    let stem: String = scene
+        .name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    let stem = stem.trim_matches('_').to_owned();
+    if stem.is_empty() {
+        "scene".to_owned()
+    } else {
+        stem
+    }
+}

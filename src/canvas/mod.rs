@@ -1,0 +1,399 @@
+//! The specimen view: field colour map, mesh, loads and supports, cracks,
+//! tips and contact; pan and zoom; crack drawing and dragging.
+
+mod field_mesh;
+mod symbols;
+mod view;
+
+use cdca::Scene;
+use egui::{Align2, Color32, FontId, Key, PointerButton, Pos2, Response, Sense, Stroke, Ui};
+use serde::{Deserialize, Serialize};
+
+use crate::command::Command;
+use crate::edit::{Editor, Tool, VertexRef, move_vertex};
+use crate::field::{FieldKind, FieldSamples};
+use crate::solution::SolutionView;
+use crate::units;
+use field_mesh::{FieldMesh, MeshKey, paint_legend};
+pub use view::ViewTransform;
+
+/// The accessible name of the canvas (tests find it by this label).
+pub const CANVAS_LABEL: &str = "Specimen canvas";
+
+/// How the specimen is shown (persisted).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct ViewSettings {
+    pub field: FieldKind,
+    pub show_mesh: bool,
+    pub show_loads: bool,
+    pub show_contact: bool,
+    pub show_traction_arrows: bool,
+    pub deformed: bool,
+    /// Deformation magnification; `None` picks one so the largest
+    /// displacement shows as 5 % of the specimen.
+    pub deform_scale: Option<f64>,
+    /// Colour range from the 1st–99th percentiles instead of min–max.
+    pub clip_range: bool,
+    /// Field samples per element side.
+    pub samples_per_cell: usize,
+    /// Frame-time overlay.
+    pub frame_overlay: bool,
+}
+
+impl Default for ViewSettings {
+    fn default() -> Self {
+        Self {
+            field: FieldKind::default(),
+            show_mesh: false,
+            show_loads: true,
+            show_contact: true,
+            show_traction_arrows: true,
+            deformed: false,
+            deform_scale: None,
+            clip_range: true,
+            samples_per_cell: 2,
+            frame_overlay: false,
+        }
+    }
+}
+
+/// What the canvas shows this frame.
+pub struct CanvasInput<'a> {
+    pub scene: &'a Scene,
+    pub solution: &'a SolutionView,
+    pub field: Option<&'a FieldSamples>,
+    pub settings: &'a ViewSettings,
+    pub selected_tip: Option<usize>,
+}
+
+/// Canvas state kept between frames.
+#[derive(Default)]
+pub struct Canvas {
+    pub view: ViewTransform,
+    /// Specimen size the view was last fitted to.
+    fitted_to: Option<[f64; 2]>,
+    pub fit_requested: bool,
+    mesh: Option<FieldMesh>,
+    /// Pointer position in the specimen, m.
+    pub hover_world: Option<[f64; 2]>,
+    /// Deformation magnification in use.
+    pub deform_scale_used: f64,
+}
+
+/// Pick radius around handles and tips, points.
+const PICK_RADIUS: f32 = 9.0;
+
+impl Canvas {
+    pub fn ui(
+        &mut self,
+        ui: &mut Ui,
+        input: &CanvasInput<'_>,
+        editor: &mut Editor,
+        cmds: &mut Vec<Command>,
+    ) -> Response {
+        let (rect, response) = ui.allocate_exact_size(ui.available_size(), Sense::click_and_drag());
+        response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Canvas, true, CANVAS_LABEL));
+        let size = [input.scene.specimen.width, input.scene.specimen.height];
+        if self.fit_requested || self.fitted_to != Some(size) {
+            self.view.fit(rect, size[0], size[1]);
+            self.fitted_to = Some(size);
+            self.fit_requested = false;
+        } else if self.view.rect != rect {
+            self.view.rect = rect;
+        }
+        self.hover_world = response.hover_pos().map(|p| self.view.world_from_screen(p));
+        let hovered_vertex = response
+            .hover_pos()
+            .and_then(|p| self.vertex_near(input.scene, p));
+        match editor.tool {
+            Tool::Select => self.select_tool(ui, &response, input, editor, hovered_vertex, cmds),
+            Tool::DrawCrack => self.draw_tool(ui, &response, input.scene, editor, cmds),
+        }
+        self.navigate(ui, &response, editor);
+        let painter = ui.painter_at(rect);
+        painter.rect_filled(rect, 0.0, ui.visuals().extreme_bg_color);
+        self.paint(&painter, input, editor, hovered_vertex);
+        response
+    }
+
+    /// Zoom with the wheel or pinch, pan with the secondary or middle button
+    /// (or the primary one on empty space with the select tool).
+    fn navigate(&mut self, ui: &Ui, response: &Response, editor: &Editor) {
+        if let Some(p) = response.hover_pos() {
+            let (scroll, zoom) = ui.input(|i| (i.smooth_scroll_delta.y, i.zoom_delta()));
+            let factor = f64::from(zoom) * (f64::from(scroll) * 0.002).exp();
+            if (factor - 1.0).abs() > 1e-6 {
+                self.view.zoom_about(p, factor);
+            }
+        }
+        let pans = response.dragged_by(PointerButton::Secondary)
+            || response.dragged_by(PointerButton::Middle)
+            || (response.dragged_by(PointerButton::Primary)
+                && editor.tool == Tool::Select
+                && editor.dragging.is_none());
+        if pans {
+            self.view.pan(response.drag_delta());
+        }
+    }
+
+    fn vertex_near(&self, scene: &Scene, p: Pos2) -> Option<(usize, usize)> {
+        let h = scene.element_size();
+        let mut best: Option<((usize, usize), f32)> = None;
+        for (i, crack) in scene.cracks.iter().enumerate() {
+            if crack.points.is_none() {
+                continue;
+            }
+            for (k, &v) in crack.polyline(h).iter().enumerate() {
+                let d = self.view.screen_from_world(v).distance(p);
+                if d < PICK_RADIUS && best.is_none_or(|(_, bd)| d < bd) {
+                    best = Some(((i, k), d));
+                }
+            }
+        }
+        best.map(|(v, _)| v)
+    }
+
+    /// A point inside the specimen (clamped half a percent from the sides).
+    fn clamp_inside(scene: &Scene, p: [f64; 2]) -> [f64; 2] {
+        let (w, h) = (scene.specimen.width, scene.specimen.height);
+        let m = 0.005 * w.min(h);
+        [p[0].clamp(m, w - m), p[1].clamp(m, h - m)]
+    }
+
+    fn select_tool(
+        &mut self,
+        ui: &Ui,
+        response: &Response,
+        input: &CanvasInput<'_>,
+        editor: &mut Editor,
+        hovered_vertex: Option<(usize, usize)>,
+        cmds: &mut Vec<Command>,
+    ) {
+        if response.drag_started_by(PointerButton::Primary) {
+            let start = ui.input(|i| i.pointer.press_origin());
+            editor.dragging = start
+                .and_then(|p| self.vertex_near(input.scene, p))
+                .or(hovered_vertex)
+                .map(|(crack, vertex)| VertexRef { crack, vertex });
+        }
+        if let (Some(v), Some(p)) = (editor.dragging, response.interact_pointer_pos())
+            && response.dragged_by(PointerButton::Primary)
+        {
+            let to = Self::clamp_inside(input.scene, self.view.world_from_screen(p));
+            cmds.push(Command::SetScene {
+                scene: Box::new(move_vertex(input.scene, v, to)),
+                ongoing: true,
+            });
+        }
+        if response.drag_stopped() && editor.dragging.take().is_some() {
+            cmds.push(Command::EndDrag);
+        }
+        if response.clicked()
+            && let Some(p) = response.interact_pointer_pos()
+        {
+            let tip =
+                input.solution.tips.iter().position(|t| {
+                    self.view.screen_from_world([t.x, t.y]).distance(p) < PICK_RADIUS
+                });
+            if tip.is_some() || input.selected_tip.is_some() {
+                cmds.push(Command::SelectTip(tip));
+            }
+            editor.selected_crack = hovered_vertex
+                .map(|(c, _)| c)
+                .or_else(|| self.crack_near(input.scene, p));
+        }
+        if let Some(i) = editor.selected_crack
+            && response.hovered()
+            && ui.input(|inp| inp.key_pressed(Key::Delete))
+            && i < input.scene.cracks.len()
+        {
+            let mut scene = input.scene.clone();
+            scene.cracks.remove(i);
+            editor.selected_crack = None;
+            cmds.push(Command::SetScene {
+                scene: Box::new(scene),
+                ongoing: false,
+            });
+        }
+    }
+
+    fn crack_near(&self, scene: &Scene, p: Pos2) -> Option<usize> {
+        let h = scene.element_size();
+        scene.cracks.iter().position(|c| {
+            c.polyline(h).windows(2).any(|w| {
+                let (a, b) = (
+                    self.view.screen_from_world(w[0]),
+                    self.view.screen_from_world(w[1]),
+                );
+                let ab = b - a;
+                let t = ((p - a).dot(ab) / ab.length_sq().max(1e-6)).clamp(0.0, 1.0);
+                (a + ab * t).distance(p) < PICK_RADIUS
+            })
+        })
+    }
+
+    fn draw_tool(
+        &mut self,
+        ui: &Ui,
+        response: &Response,
+        scene: &Scene,
+        editor: &mut Editor,
+        cmds: &mut Vec<Command>,
+    ) {
+        if response.clicked()
+            && !response.double_clicked()
+            && let Some(p) = response.interact_pointer_pos()
+        {
+            editor
+                .drawing
+                .push(Self::clamp_inside(scene, self.view.world_from_screen(p)));
+        }
+        let (enter, escape) = ui.input(|i| (i.key_pressed(Key::Enter), i.key_pressed(Key::Escape)));
+        if escape {
+            editor.drawing.clear();
+            editor.tool = Tool::Select;
+        } else if response.double_clicked() || enter {
+            if let Some(crack) = editor.finish_drawing() {
+                let mut s = scene.clone();
+                s.cracks.push(crack);
+                editor.selected_crack = Some(s.cracks.len() - 1);
+                cmds.push(Command::SetScene {
+                    scene: Box::new(s),
+                    ongoing: false,
+                });
+            }
+        }
+    }
+
+    fn paint(
+        &mut self,
+        painter: &egui::Painter,
+        input: &CanvasInput<'_>,
+        editor: &Editor,
+        hovered_vertex: Option<(usize, usize)>,
+    ) {
+        let view = self.view;
+        let s = input.settings;
+        let scene = input.scene;
+        let wants_field = s.field != FieldKind::None || s.deformed;
+        let field = input.field.filter(|_| wants_field && input.solution.solved);
+        symbols::paint_outline(painter, &view, scene, field.is_none());
+        if let Some(samples) = field {
+            self.deform_scale_used = if s.deformed {
+                s.deform_scale
+                    .unwrap_or_else(|| auto_deform_scale(samples, scene))
+            } else {
+                0.0
+            };
+            let key = MeshKey {
+                field: samples.key,
+                kind: s.field,
+                deform_scale: self.deform_scale_used,
+                clip: s.clip_range,
+            };
+            if self.mesh.as_ref().is_none_or(|m| m.key != key) {
+                self.mesh = Some(FieldMesh::build(
+                    key,
+                    samples,
+                    scene.material.plane,
+                    scene.material.poisson,
+                ));
+            }
+            if let Some(mesh) = &self.mesh {
+                mesh.paint(painter, &view);
+                if let Some(range) = mesh.range {
+                    paint_legend(painter, view.rect, s.field, range, s.clip_range);
+                }
+            }
+        }
+        if s.show_mesh {
+            symbols::paint_mesh_lines(painter, &view, scene);
+        }
+        if s.show_loads {
+            symbols::paint_boundary(painter, &view, scene);
+        }
+        let scene_cracks: Vec<Vec<[f64; 2]>>;
+        let cracks = if input.solution.cracks.is_empty() {
+            let h = scene.element_size();
+            scene_cracks = scene.cracks.iter().map(|c| c.polyline(h)).collect();
+            &scene_cracks
+        } else {
+            &input.solution.cracks
+        };
+        symbols::paint_cracks(painter, &view, cracks, editor.selected_crack);
+        if s.show_contact {
+            symbols::paint_contact(
+                painter,
+                &view,
+                &input.solution.contact,
+                s.show_traction_arrows,
+            );
+        }
+        symbols::paint_tips(painter, &view, &input.solution.tips, input.selected_tip);
+        if editor.tool == Tool::Select {
+            symbols::paint_handles(painter, &view, scene, hovered_vertex);
+        }
+        self.paint_drawing(painter, editor);
+        self.paint_status(painter, editor);
+    }
+
+    fn paint_drawing(&self, painter: &egui::Painter, editor: &Editor) {
+        if editor.tool != Tool::DrawCrack {
+            return;
+        }
+        let mut points: Vec<Pos2> = editor
+            .drawing
+            .iter()
+            .map(|&p| self.view.screen_from_world(p))
+            .collect();
+        if let Some(w) = self.hover_world {
+            points.push(self.view.screen_from_world(w));
+        }
+        painter.add(egui::Shape::dashed_line(
+            &points,
+            Stroke::new(2.0, symbols::HANDLE_COLOR),
+            6.0,
+            4.0,
+        ));
+        for p in &points {
+            painter.circle_filled(*p, 3.5, symbols::HANDLE_COLOR);
+        }
+    }
+
+    /// Pointer coordinates in mm and the tool's hint, bottom-left.
+    fn paint_status(&self, painter: &egui::Painter, editor: &Editor) {
+        let mut text = match self.hover_world {
+            Some([x, y]) => format!("x = {}   y = {}", units::mm(x), units::mm(y)),
+            None => String::new(),
+        };
+        if editor.tool == Tool::DrawCrack {
+            text.push_str("   — click points; double-click or Enter finishes, Esc cancels");
+        }
+        let pos = self.view.rect.left_bottom() + egui::vec2(8.0, -8.0);
+        painter.text(
+            pos,
+            Align2::LEFT_BOTTOM,
+            text,
+            FontId::monospace(12.0),
+            Color32::from_gray(120),
+        );
+    }
+}
+
+/// A magnification that shows the largest displacement as 5 % of the
+/// specimen's larger side.
+fn auto_deform_scale(samples: &FieldSamples, scene: &Scene) -> f64 {
+    let max_u = samples
+        .samples
+        .iter()
+        .flat_map(|s| s.corner_disp.iter())
+        .map(|u| u[0].hypot(u[1]))
+        .filter(|u| u.is_finite())
+        .fold(0.0_f64, f64::max);
+    if max_u > 0.0 {
+        0.05 * scene.specimen.width.max(scene.specimen.height) / max_u
+    } else {
+        1.0
+    }
+}

@@ -1,0 +1,299 @@
+//! Drawing the specimen: outline, mesh lines, loads as arrows, supports as
+//! symbols, cracks, tips and the contact state along the cracks.
+
+use cdca::report::{Mode, TipReport};
+use cdca::scene::{Fix, SideBc};
+use cdca::{ContactPointView, ContactState, Scene};
+use egui::{Align2, Color32, FontId, Painter, Pos2, Shape, Stroke, Vec2, vec2};
+
+use super::view::ViewTransform;
+use crate::units;
+
+pub const LOAD_COLOR: Color32 = Color32::from_rgb(230, 60, 60);
+pub const SUPPORT_COLOR: Color32 = Color32::from_rgb(90, 160, 255);
+pub const CRACK_COLOR: Color32 = Color32::from_rgb(20, 20, 20);
+pub const HANDLE_COLOR: Color32 = Color32::from_rgb(255, 210, 0);
+
+/// Colour of a contact state: open grey-blue, stick green, slip orange.
+pub fn contact_color(state: ContactState) -> Color32 {
+    match state {
+        ContactState::Open => Color32::from_rgb(150, 190, 255),
+        ContactState::Stick => Color32::from_rgb(40, 200, 90),
+        ContactState::Slip => Color32::from_rgb(255, 140, 0),
+    }
+}
+
+/// Colour of a tip by the criterion's decision.
+pub fn tip_color(mode: Mode) -> Color32 {
+    match mode {
+        Mode::Tension => Color32::from_rgb(255, 60, 60),
+        Mode::Shear => Color32::from_rgb(200, 80, 255),
+        Mode::None => Color32::WHITE,
+    }
+}
+
+pub fn paint_outline(painter: &Painter, view: &ViewTransform, scene: &Scene, fill: bool) {
+    let (w, h) = (scene.specimen.width, scene.specimen.height);
+    let rect = egui::Rect::from_two_pos(
+        view.screen_from_world([0.0, 0.0]),
+        view.screen_from_world([w, h]),
+    );
+    if fill {
+        painter.rect_filled(rect, 0.0, Color32::from_gray(200));
+    }
+    painter.rect_stroke(
+        rect,
+        0.0,
+        Stroke::new(1.5, Color32::from_gray(60)),
+        egui::StrokeKind::Middle,
+    );
+}
+
+pub fn paint_mesh_lines(painter: &Painter, view: &ViewTransform, scene: &Scene) {
+    let (w, h) = (scene.specimen.width, scene.specimen.height);
+    let (nx, ny) = (scene.mesh.nx, scene.mesh.ny);
+    let stroke = Stroke::new(0.5, Color32::from_black_alpha(70));
+    for i in 0..=nx {
+        let x = w * i as f64 / nx as f64;
+        painter.line_segment(
+            [
+                view.screen_from_world([x, 0.0]),
+                view.screen_from_world([x, h]),
+            ],
+            stroke,
+        );
+    }
+    for j in 0..=ny {
+        let y = h * j as f64 / ny as f64;
+        painter.line_segment(
+            [
+                view.screen_from_world([0.0, y]),
+                view.screen_from_world([w, y]),
+            ],
+            stroke,
+        );
+    }
+}
+
+/// One side of the rectangle: its end points and outward normal.
+struct Side {
+    a: [f64; 2],
+    b: [f64; 2],
+    outward: [f64; 2],
+    bc: SideBc,
+}
+
+fn sides(scene: &Scene) -> [Side; 4] {
+    let (w, h) = (scene.specimen.width, scene.specimen.height);
+    let b = &scene.boundary;
+    [
+        Side {
+            a: [0.0, 0.0],
+            b: [w, 0.0],
+            outward: [0.0, -1.0],
+            bc: b.bottom,
+        },
+        Side {
+            a: [w, 0.0],
+            b: [w, h],
+            outward: [1.0, 0.0],
+            bc: b.right,
+        },
+        Side {
+            a: [0.0, h],
+            b: [w, h],
+            outward: [0.0, 1.0],
+            bc: b.top,
+        },
+        Side {
+            a: [0.0, 0.0],
+            b: [0.0, h],
+            outward: [-1.0, 0.0],
+            bc: b.left,
+        },
+    ]
+}
+
+/// Traction arrows (compression points into the specimen), roller and
+/// fixed symbols, point supports.
+pub fn paint_boundary(painter: &Painter, view: &ViewTransform, scene: &Scene) {
+    let font = FontId::proportional(12.0);
+    for side in sides(scene) {
+        let out = view.screen_vec(side.outward).normalized();
+        let along = view
+            .screen_vec([side.b[0] - side.a[0], side.b[1] - side.a[1]])
+            .normalized();
+        let pa = view.screen_from_world(side.a);
+        let pb = view.screen_from_world(side.b);
+        let n = 9;
+        let at = |k: usize| pa + (pb - pa) * ((k as f32 + 0.5) / n as f32);
+        match side.bc {
+            SideBc::Free => {}
+            SideBc::Roller => {
+                for k in 0..n {
+                    painter.circle_stroke(at(k) + out * 5.0, 4.0, Stroke::new(1.5, SUPPORT_COLOR));
+                }
+                painter.line_segment(
+                    [pa + out * 10.0, pb + out * 10.0],
+                    Stroke::new(1.5, SUPPORT_COLOR),
+                );
+            }
+            SideBc::Fixed => {
+                painter.line_segment(
+                    [pa + out * 2.0, pb + out * 2.0],
+                    Stroke::new(2.0, SUPPORT_COLOR),
+                );
+                for k in 0..2 * n {
+                    let p = pa + (pb - pa) * ((k as f32 + 0.5) / (2 * n) as f32) + out * 2.0;
+                    painter.line_segment(
+                        [p, p + out * 8.0 + along * 6.0],
+                        Stroke::new(1.0, SUPPORT_COLOR),
+                    );
+                }
+            }
+            SideBc::Traction { normal, shear } => {
+                let stroke = Stroke::new(2.0, LOAD_COLOR);
+                let len = 32.0;
+                if normal != 0.0 {
+                    for k in 0..n {
+                        let p = at(k);
+                        if normal < 0.0 {
+                            painter.arrow(p + out * (len + 4.0), -out * len, stroke);
+                        } else {
+                            painter.arrow(p + out * 4.0, out * len, stroke);
+                        }
+                    }
+                }
+                if shear != 0.0 {
+                    let dir = view
+                        .screen_vec(if side.outward[0] == 0.0 {
+                            [1.0, 0.0]
+                        } else {
+                            [0.0, 1.0]
+                        })
+                        .normalized();
+                    for k in (0..n).step_by(2) {
+                        let p = at(k) + out * (len + 12.0);
+                        painter.arrow(
+                            p - dir * 10.0 * shear.signum() as f32,
+                            dir * 20.0 * shear.signum() as f32,
+                            stroke,
+                        );
+                    }
+                }
+                let mid = pa + (pb - pa) * 0.5 + out * (len + 24.0);
+                let label = match (normal != 0.0, shear != 0.0) {
+                    (true, true) => format!("σ_n {}, τ {}", units::mpa(normal), units::mpa(shear)),
+                    (false, true) => format!("τ {}", units::mpa(shear)),
+                    _ => format!("σ_n {}", units::mpa(normal)),
+                };
+                painter.text(mid, Align2::CENTER_CENTER, label, font.clone(), LOAD_COLOR);
+            }
+        }
+    }
+    for p in &scene.boundary.points {
+        let q = view.screen_from_world(p.at);
+        let tri = vec![q, q + vec2(-7.0, 12.0), q + vec2(7.0, 12.0)];
+        painter.add(Shape::convex_polygon(tri, SUPPORT_COLOR, Stroke::NONE));
+        let label = match p.fix {
+            Fix::X => "x",
+            Fix::Y => "y",
+            Fix::Xy => "xy",
+        };
+        painter.text(
+            q + vec2(0.0, 14.0),
+            Align2::CENTER_TOP,
+            label,
+            font.clone(),
+            SUPPORT_COLOR,
+        );
+    }
+}
+
+pub fn paint_cracks(
+    painter: &Painter,
+    view: &ViewTransform,
+    cracks: &[Vec<[f64; 2]>],
+    selected: Option<usize>,
+) {
+    for (i, c) in cracks.iter().enumerate() {
+        let points: Vec<Pos2> = c.iter().map(|&p| view.screen_from_world(p)).collect();
+        let width = if selected == Some(i) { 4.0 } else { 2.5 };
+        painter.add(Shape::line(points, Stroke::new(width, CRACK_COLOR)));
+    }
+}
+
+/// Contact points coloured by state, and the traction the other face exerts
+/// on the φ > 0 face as arrows (longest arrow 25 points).
+pub fn paint_contact(
+    painter: &Painter,
+    view: &ViewTransform,
+    contact: &[ContactPointView],
+    arrows: bool,
+) {
+    let max_t = contact
+        .iter()
+        .map(|c| c.p_n.hypot(c.p_t))
+        .fold(0.0_f64, f64::max);
+    for c in contact {
+        let q = view.screen_from_world([c.x, c.y]);
+        painter.circle_filled(q, 2.5, contact_color(c.state));
+        if arrows && max_t > 0.0 && c.state != ContactState::Open {
+            let [nx, ny] = c.normal;
+            let tangent = [ny, -nx];
+            let t = [
+                -(c.p_n * nx + c.p_t * tangent[0]),
+                -(c.p_n * ny + c.p_t * tangent[1]),
+            ];
+            let v = view.screen_vec(t).normalized() * (25.0 * (t[0].hypot(t[1]) / max_t) as f32);
+            painter.arrow(q, v, Stroke::new(1.2, contact_color(c.state)));
+        }
+    }
+}
+
+pub fn paint_tips(
+    painter: &Painter,
+    view: &ViewTransform,
+    tips: &[TipReport],
+    selected: Option<usize>,
+) {
+    for (i, t) in tips.iter().enumerate() {
+        let q = view.screen_from_world([t.x, t.y]);
+        painter.circle(
+            q,
+            5.0,
+            tip_color(t.criterion.mode),
+            Stroke::new(1.5, Color32::BLACK),
+        );
+        if selected == Some(i) {
+            painter.circle_stroke(q, 10.0, Stroke::new(2.0, HANDLE_COLOR));
+        }
+    }
+}
+
+/// Editable vertices of the scene's cracks.
+pub fn paint_handles(
+    painter: &Painter,
+    view: &ViewTransform,
+    scene: &Scene,
+    hovered: Option<(usize, usize)>,
+) {
+    let h = scene.element_size();
+    for (i, crack) in scene.cracks.iter().enumerate() {
+        if crack.points.is_none() {
+            continue;
+        }
+        for (k, &p) in crack.polyline(h).iter().enumerate() {
+            let q = view.screen_from_world(p);
+            let r = if hovered == Some((i, k)) { 6.0 } else { 4.0 };
+            let rect = egui::Rect::from_center_size(q, Vec2::splat(2.0 * r));
+            painter.rect(
+                rect,
+                1.0,
+                HANDLE_COLOR,
+                Stroke::new(1.0, Color32::BLACK),
+                egui::StrokeKind::Middle,
+            );
+        }
+    }
+}

@@ -1,0 +1,67 @@
+//! What the UI asks for. Panels and the canvas read the app's state and push
+//! commands; the app applies them once per frame, before any solver work.
+
+use cdca::Scene;
+use cdca::scene::SolverKind;
+
+/// Files the workbench can write.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Export {
+    /// The scene as JSON.
+    Scene,
+    /// Crack polylines as CSV.
+    CrackPaths,
+    /// Growth history as CSV.
+    History,
+    /// Mesh with displacement and stresses as a VTK unstructured grid.
+    Fields,
+    /// The canvas as a PNG image.
+    CanvasPng,
+}
+
+/// One request from the UI.
+#[derive(Clone, Debug)]
+pub enum Command {
+    /// Replace the scene being edited. `ongoing` is true while a drag is in
+    /// progress: consecutive ongoing edits form one undo step and the
+    /// re-solve waits until the drag ends.
+    SetScene {
+        scene: Box<Scene>,
+        ongoing: bool,
+    },
+    /// A drag of scene edits ended: the next edit is a new undo step, and
+    /// the scene may be re-solved.
+    EndDrag,
+    /// Parse a scene file's text and open it; on error the current scene
+    /// and its results stay untouched and the error is shown.
+    OpenSceneText {
+        source: String,
+        text: String,
+    },
+    /// Open bundled scene `i` of [`crate::scenes::BUNDLED`].
+    OpenBundled(usize),
+    /// Ask for a file to open (native dialog).
+    OpenDialog,
+    /// Ask for a path and write a file.
+    Export(Export),
+    Undo,
+    Redo,
+    /// Solve the current scene now (direct: one call; iterative: relax).
+    Solve,
+    /// One sweep of the iterative solver.
+    Step,
+    /// Relax to convergence, animated.
+    Relax,
+    /// One growth step.
+    GrowOne,
+    /// Grow until the run ends, animated.
+    RunGrowth,
+    Pause,
+    /// Back to the scene's initial cracks, no solution.
+    Reset,
+    /// Run every solver on the current scene and record error against run time.
+    CompareSolvers(Vec<SolverKind>),
+    /// Inspect tip `i` of the current solution's tips (None: close).
+    SelectTip(Option<usize>),
+    DismissMessage,
+}

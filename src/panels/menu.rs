@@ -1,0 +1,213 @@
+//! The menu bar (files, bundled scenes, exports, undo), the toolbar (tools
+//! and what the canvas shows), the message banner and the frame overlay.
+
+use egui::{Key, KeyboardShortcut, Modifiers, Rect, Ui};
+
+use crate::app::{Message, WorkbenchApp};
+use crate::command::{Command, Export};
+use crate::edit::Tool;
+use crate::field::FieldKind;
+use crate::panels::FrameStats;
+use crate::scenes::BUNDLED;
+use crate::units;
+
+const UNDO: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Z);
+const REDO: KeyboardShortcut =
+    KeyboardShortcut::new(Modifiers::COMMAND.plus(Modifiers::SHIFT), Key::Z);
+const REDO_Y: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Y);
+
+pub fn menu_bar_ui(ui: &mut Ui, app: &mut WorkbenchApp, cmds: &mut Vec<Command>) {
+    shortcuts(ui, cmds);
+    egui::MenuBar::new().ui(ui, |ui| {
+        ui.menu_button("File", |ui| {
+            if ui.button("Open scene…").clicked() {
+                cmds.push(Command::OpenDialog);
+            }
+            ui.menu_button("Bundled scenes", |ui| {
+                for (i, b) in BUNDLED.iter().enumerate() {
+                    if ui.button(b.title).clicked() {
+                        cmds.push(Command::OpenBundled(i));
+                    }
+                }
+            });
+            if ui.button("Save scene…").clicked() {
+                cmds.push(Command::Export(Export::Scene));
+            }
+            ui.separator();
+            let exports = [
+                ("Export crack paths (CSV)…", Export::CrackPaths),
+                ("Export growth history (CSV)…", Export::History),
+                ("Export fields (VTK .vtu)…", Export::Fields),
+                ("Export canvas (PNG)…", Export::CanvasPng),
+            ];
+            for (label, what) in exports {
+                if ui.button(label).clicked() {
+                    cmds.push(Command::Export(what));
+                }
+            }
+        });
+        ui.menu_button("Edit", |ui| {
+            let undo = ui.add_enabled(
+                app.undo.can_undo(),
+                egui::Button::new("Undo").shortcut_text(ui.ctx().format_shortcut(&UNDO)),
+            );
+            if undo.clicked() {
+                cmds.push(Command::Undo);
+            }
+            let redo = ui.add_enabled(
+                app.undo.can_redo(),
+                egui::Button::new("Redo").shortcut_text(ui.ctx().format_shortcut(&REDO)),
+            );
+            if redo.clicked() {
+                cmds.push(Command::Redo);
+            }
+        });
+        ui.menu_button("View", |ui| {
+            if ui.button("Fit specimen").clicked() {
+                app.canvas.fit_requested = true;
+            }
+            ui.checkbox(&mut app.settings.frame_overlay, "Frame-time overlay");
+            ui.checkbox(&mut app.settings.clip_range, "Colour range 1–99 %");
+            ui.horizontal(|ui| {
+                let l = ui.label("Field samples per element side");
+                ui.add(egui::DragValue::new(&mut app.settings.samples_per_cell).range(1..=4))
+                    .labelled_by(l.id);
+            });
+        });
+        ui.separator();
+        ui.label(format!("Scene: {}", app.scene_source));
+    });
+}
+
+fn shortcuts(ui: &mut Ui, cmds: &mut Vec<Command>) {
+    if ui.memory(|m| m.focused().is_some()) {
+        return; // text fields keep their own undo
+    }
+    ui.input_mut(|i| {
+        if i.consume_shortcut(&REDO) || i.consume_shortcut(&REDO_Y) {
+            cmds.push(Command::Redo);
+        } else if i.consume_shortcut(&UNDO) {
+            cmds.push(Command::Undo);
+        }
+    });
+}
+
+pub fn toolbar_ui(ui: &mut Ui, app: &mut WorkbenchApp, cmds: &mut Vec<Command>) {
+    ui.horizontal_wrapped(|ui| {
+        let editor = &mut app.editor;
+        if ui
+            .selectable_label(editor.tool == Tool::Select, "Select")
+            .clicked()
+        {
+            editor.tool = Tool::Select;
+            editor.drawing.clear();
+        }
+        if ui
+            .selectable_label(editor.tool == Tool::DrawCrack, "Draw crack")
+            .on_hover_text("Click points; double-click or Enter finishes")
+            .clicked()
+        {
+            editor.tool = Tool::DrawCrack;
+            editor.drawing.clear();
+        }
+        if ui
+            .add_enabled(app.undo.can_undo(), egui::Button::new("Undo"))
+            .clicked()
+        {
+            cmds.push(Command::Undo);
+        }
+        if ui
+            .add_enabled(app.undo.can_redo(), egui::Button::new("Redo"))
+            .clicked()
+        {
+            cmds.push(Command::Redo);
+        }
+        ui.separator();
+        let s = &mut app.settings;
+        egui::ComboBox::from_label("Field")
+            .selected_text(s.field.label())
+            .show_ui(ui, |ui| {
+                for k in FieldKind::ALL {
+                    ui.selectable_value(&mut s.field, k, k.label());
+                }
+            });
+        ui.checkbox(&mut s.show_mesh, "Mesh");
+        ui.checkbox(&mut s.show_loads, "Loads & supports");
+        if !app.scene.cracks.is_empty() {
+            ui.checkbox(&mut s.show_contact, "Contact");
+            if s.show_contact {
+                ui.checkbox(&mut s.show_traction_arrows, "Traction arrows");
+            }
+        }
+        ui.checkbox(&mut s.deformed, "Deformed");
+        if s.deformed {
+            let mut scale = s.deform_scale.unwrap_or(app.canvas.deform_scale_used);
+            let speed = scale.abs() * 0.01 + 0.1;
+            let l = ui.label("scale ×");
+            let r = ui
+                .add(
+                    egui::DragValue::new(&mut scale)
+                        .speed(speed)
+                        .range(0.0..=1e9),
+                )
+                .labelled_by(l.id);
+            if r.changed() {
+                s.deform_scale = Some(scale);
+            }
+            if ui
+                .add_enabled(s.deform_scale.is_some(), egui::Button::new("Auto scale"))
+                .clicked()
+            {
+                s.deform_scale = None;
+            }
+        }
+    });
+}
+
+/// The error or information banner above the canvas.
+pub fn message_ui(ui: &mut Ui, message: Option<&Message>, cmds: &mut Vec<Command>) {
+    let Some(message) = message else {
+        return;
+    };
+    let (text, color) = match message {
+        Message::Error(e) => (e.as_str(), ui.visuals().error_fg_color),
+        Message::Info(i) => (i.as_str(), ui.visuals().text_color()),
+    };
+    egui::Frame::group(ui.style())
+        .stroke(egui::Stroke::new(1.5, color))
+        .show(ui, |ui| {
+            ui.horizontal_wrapped(|ui| {
+                ui.colored_label(color, text);
+                if ui.button("Dismiss").clicked() {
+                    cmds.push(Command::DismissMessage);
+                }
+            });
+        });
+}
+
+/// Frame times in the canvas's top-left corner.
+pub fn frame_overlay_ui(ui: &Ui, canvas: Rect, stats: &FrameStats) {
+    let text = format!(
+        "frame (logic + UI): last {}  mean {}  p95 {}  max {}\nsolver per frame: {}   frame interval: {}   ({} frames)",
+        units::seconds(stats.last()),
+        units::seconds(stats.mean()),
+        units::seconds(stats.p95()),
+        units::seconds(stats.max()),
+        units::seconds(stats.mean_solver()),
+        units::seconds(stats.mean_interval()),
+        stats.len(),
+    );
+    let painter = ui.painter_at(canvas);
+    let pos = canvas.left_top() + egui::vec2(8.0, 8.0);
+    let galley = painter.layout_no_wrap(
+        text,
+        egui::FontId::monospace(11.0),
+        ui.visuals().strong_text_color(),
+    );
+    painter.rect_filled(
+        Rect::from_min_size(pos, galley.size()).expand(4.0),
+        3.0,
+        ui.visuals().extreme_bg_color,
+    );
+    painter.galley(pos, galley, egui::Color32::WHITE);
+}

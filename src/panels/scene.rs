@@ -1,0 +1,383 @@
+//! Scene parameters: specimen and mesh, material, boundary, cracks,
+//! criterion and growth. Only what the current scene can use is shown.
+
+use cdca::scene::{CriterionKind, Fix, Plane, Sampling, SideBc};
+use cdca::{ContactState, Scene};
+use egui::{CollapsingHeader, Grid, Ui};
+
+use super::widgets::{EditTracker, choice, count_row, optional_row, quantity_row};
+use crate::command::Command;
+use crate::edit::{Editor, Tool};
+use crate::solution::{SolutionView, polyline_length};
+use crate::units::{self, MM_PER_M, PA_PER_GPA, PA_PER_MPA};
+
+const MM: f64 = 1.0 / MM_PER_M;
+
+pub fn scene_ui(
+    ui: &mut Ui,
+    scene: &Scene,
+    solution: &SolutionView,
+    editor: &mut Editor,
+    cmds: &mut Vec<Command>,
+) {
+    let mut draft = scene.clone();
+    let mut t = EditTracker::default();
+    ui.heading("Scene");
+    ui.horizontal(|ui| {
+        let l = ui.label("Name");
+        ui.text_edit_singleline(&mut draft.name).labelled_by(l.id);
+    });
+    specimen_ui(ui, &mut draft, &mut t);
+    material_ui(ui, &mut draft, &mut t);
+    boundary_ui(ui, &mut draft, &mut t);
+    cracks_ui(ui, &mut draft, solution, editor, &mut t);
+    criterion_ui(ui, &mut draft, &mut t);
+    growth_ui(ui, &mut draft, &mut t);
+    if draft != *scene {
+        cmds.push(Command::SetScene {
+            scene: Box::new(draft),
+            ongoing: t.ongoing,
+        });
+    } else if t.ended {
+        cmds.push(Command::EndDrag);
+    }
+}
+
+fn specimen_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
+    CollapsingHeader::new("Specimen and mesh")
+        .default_open(true)
+        .show(ui, |ui| {
+            Grid::new("specimen").num_columns(2).show(ui, |ui| {
+                quantity_row(ui, t, "Width", &mut s.specimen.width, MM, "mm", 1.0..=1e5);
+                quantity_row(ui, t, "Height", &mut s.specimen.height, MM, "mm", 1.0..=1e5);
+                quantity_row(
+                    ui,
+                    t,
+                    "Thickness",
+                    &mut s.specimen.thickness,
+                    MM,
+                    "mm",
+                    1e-3..=1e5,
+                );
+                count_row(ui, t, "Elements along x", &mut s.mesh.nx, 1..=400);
+                count_row(ui, t, "Elements along y", &mut s.mesh.ny, 1..=400);
+                ui.label("Element size");
+                ui.label(units::mm(s.element_size()));
+                ui.end_row();
+            });
+            choice(
+                ui,
+                "Plane",
+                &mut s.material.plane,
+                &[
+                    (Plane::Stress, "plane stress"),
+                    (Plane::Strain, "plane strain"),
+                ],
+            );
+        });
+}
+
+fn material_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
+    let comprehensive = s.criterion.kind == CriterionKind::Comprehensive;
+    CollapsingHeader::new("Material")
+        .default_open(true)
+        .show(ui, |ui| {
+            Grid::new("material").num_columns(2).show(ui, |ui| {
+                let m = &mut s.material;
+                quantity_row(
+                    ui,
+                    t,
+                    "Young's modulus E",
+                    &mut m.young,
+                    PA_PER_GPA,
+                    "GPa",
+                    1e-6..=1e4,
+                );
+                quantity_row(
+                    ui,
+                    t,
+                    "Poisson's ratio ν",
+                    &mut m.poisson,
+                    1.0,
+                    "",
+                    -0.99..=0.499,
+                );
+                quantity_row(
+                    ui,
+                    t,
+                    "Toughness K_IC",
+                    &mut m.k_ic,
+                    PA_PER_MPA,
+                    "MPa·√m",
+                    1e-6..=1e3,
+                );
+                if comprehensive {
+                    quantity_row(
+                        ui,
+                        t,
+                        "Rock cohesion c",
+                        &mut m.cohesion,
+                        PA_PER_MPA,
+                        "MPa",
+                        0.0..=1e4,
+                    );
+                    quantity_row(
+                        ui,
+                        t,
+                        "Friction angle φ",
+                        &mut m.friction_angle_deg,
+                        1.0,
+                        "°",
+                        0.0..=89.0,
+                    );
+                }
+            });
+        });
+}
+
+fn side_ui(ui: &mut Ui, t: &mut EditTracker, name: &str, bc: &mut SideBc) {
+    let mut kind = match bc {
+        SideBc::Free => 0,
+        SideBc::Fixed => 1,
+        SideBc::Roller => 2,
+        SideBc::Traction { .. } => 3,
+    };
+    let before = kind;
+    choice(
+        ui,
+        name,
+        &mut kind,
+        &[(0, "free"), (1, "fixed"), (2, "roller"), (3, "traction")],
+    );
+    if kind != before {
+        *bc = match kind {
+            1 => SideBc::Fixed,
+            2 => SideBc::Roller,
+            3 => SideBc::Traction {
+                normal: -1e6,
+                shear: 0.0,
+            },
+            _ => SideBc::Free,
+        };
+    }
+    if let SideBc::Traction { normal, shear } = bc {
+        Grid::new(("traction", name)).num_columns(2).show(ui, |ui| {
+            quantity_row(
+                ui,
+                t,
+                "  normal (tension +)",
+                normal,
+                PA_PER_MPA,
+                "MPa",
+                -1e5..=1e5,
+            );
+            quantity_row(ui, t, "  shear", shear, PA_PER_MPA, "MPa", -1e5..=1e5);
+        });
+    }
+}
+
+fn boundary_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
+    CollapsingHeader::new("Loads and supports")
+        .default_open(true)
+        .show(ui, |ui| {
+            let b = &mut s.boundary;
+            side_ui(ui, t, "Top", &mut b.top);
+            side_ui(ui, t, "Right", &mut b.right);
+            side_ui(ui, t, "Bottom", &mut b.bottom);
+            side_ui(ui, t, "Left", &mut b.left);
+            let mut remove = None;
+            for (i, p) in b.points.iter().enumerate() {
+                ui.horizontal(|ui| {
+                    let fix = match p.fix {
+                        Fix::X => "x",
+                        Fix::Y => "y",
+                        Fix::Xy => "x and y",
+                    };
+                    ui.label(format!(
+                        "Point support at ({}, {}) fixes {fix}",
+                        units::mm(p.at[0]),
+                        units::mm(p.at[1])
+                    ));
+                    if ui
+                        .small_button(format!("Remove support {}", i + 1))
+                        .clicked()
+                    {
+                        remove = Some(i);
+                    }
+                });
+            }
+            if let Some(i) = remove {
+                b.points.remove(i);
+            }
+        });
+}
+
+fn cracks_ui(
+    ui: &mut Ui,
+    s: &mut Scene,
+    solution: &SolutionView,
+    editor: &mut Editor,
+    t: &mut EditTracker,
+) {
+    let h = s.element_size();
+    // SPEC §5 default: k_N = 100 E / h.
+    let penalty = 100.0 * s.material.young / h;
+    // Friction and cohesion act only where faces touch: hide them once a
+    // solve has shown every face point open.
+    let faces_closed = !solution.solved
+        || solution.contact.is_empty()
+        || solution
+            .contact
+            .iter()
+            .any(|c| c.state != ContactState::Open);
+    CollapsingHeader::new(format!("Cracks ({})", s.cracks.len()))
+        .default_open(true)
+        .show(ui, |ui| {
+            if ui.button("Draw a new crack").clicked() {
+                editor.tool = Tool::DrawCrack;
+                editor.drawing.clear();
+            }
+            if !faces_closed {
+                ui.weak("All crack faces are open: friction and cohesion have no effect.");
+            }
+            let mut remove = None;
+            for (i, crack) in s.cracks.iter_mut().enumerate() {
+                let selected = editor.selected_crack == Some(i);
+                let polyline = crack.polyline(h);
+                let title = format!(
+                    "Crack {}: {} points, {}",
+                    i + 1,
+                    polyline.len(),
+                    units::mm(polyline_length(&polyline))
+                );
+                CollapsingHeader::new(title)
+                    .id_salt(("crack", i))
+                    .default_open(selected)
+                    .show(ui, |ui| {
+                        if faces_closed {
+                            Grid::new(("crack grid", i)).num_columns(2).show(ui, |ui| {
+                                quantity_row(
+                                    ui,
+                                    t,
+                                    "Friction μ",
+                                    &mut crack.friction,
+                                    1.0,
+                                    "",
+                                    0.0..=5.0,
+                                );
+                                quantity_row(
+                                    ui,
+                                    t,
+                                    "Face cohesion c_c",
+                                    &mut crack.cohesion,
+                                    PA_PER_MPA,
+                                    "MPa",
+                                    0.0..=1e4,
+                                );
+                                optional_row(
+                                    ui,
+                                    t,
+                                    "Normal stiffness k_N",
+                                    &mut crack.normal_stiffness,
+                                    penalty,
+                                    PA_PER_GPA / MM_PER_M,
+                                    "GPa/mm",
+                                );
+                                let kt = crack.normal_stiffness.unwrap_or(penalty) / 10.0;
+                                optional_row(
+                                    ui,
+                                    t,
+                                    "Shear stiffness k_T",
+                                    &mut crack.shear_stiffness,
+                                    kt,
+                                    PA_PER_GPA / MM_PER_M,
+                                    "GPa/mm",
+                                );
+                            });
+                        }
+                        ui.horizontal(|ui| {
+                            if ui
+                                .selectable_label(selected, format!("Select crack {}", i + 1))
+                                .clicked()
+                            {
+                                editor.selected_crack = if selected { None } else { Some(i) };
+                            }
+                            if ui.button(format!("Delete crack {}", i + 1)).clicked() {
+                                remove = Some(i);
+                            }
+                        });
+                    });
+            }
+            if let Some(i) = remove {
+                s.cracks.remove(i);
+                editor.selected_crack = None;
+            }
+        });
+}
+
+fn criterion_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
+    let h = s.element_size();
+    CollapsingHeader::new("Fracture criterion")
+        .default_open(false)
+        .show(ui, |ui| {
+            let c = &mut s.criterion;
+            choice(
+                ui,
+                "Criterion",
+                &mut c.kind,
+                &[
+                    (CriterionKind::Comprehensive, "tension, then shear (paper)"),
+                    (CriterionKind::Mts, "max. tangential stress"),
+                    (CriterionKind::MtsT, "MTS with T-stress"),
+                ],
+            );
+            Grid::new("criterion").num_columns(2).show(ui, |ui| {
+                optional_row(ui, t, "Radius r0", &mut c.r0, 3.0 * h, MM, "mm");
+                if c.kind == CriterionKind::Comprehensive {
+                    let r0 = c.r0.unwrap_or(3.0 * h);
+                    let auto = s.material.k_ic / (2.0 * std::f64::consts::PI * r0).sqrt();
+                    optional_row(
+                        ui,
+                        t,
+                        "Tensile strength σ_t",
+                        &mut s.material.tensile_strength,
+                        auto,
+                        PA_PER_MPA,
+                        "MPa",
+                    );
+                }
+            });
+            if c.kind == CriterionKind::Comprehensive {
+                choice(
+                    ui,
+                    "Sampling",
+                    &mut c.sampling,
+                    &[
+                        (Sampling::Field, "computed field"),
+                        (Sampling::Williams, "Williams expansion"),
+                    ],
+                );
+            }
+        });
+}
+
+fn growth_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
+    let r0 = s.criterion.r0.unwrap_or(3.0 * s.element_size());
+    CollapsingHeader::new("Growth")
+        .default_open(false)
+        .show(ui, |ui| {
+            Grid::new("growth").num_columns(2).show(ui, |ui| {
+                let g = &mut s.growth;
+                optional_row(ui, t, "Increment Δa", &mut g.increment, r0, MM, "mm");
+                count_row(ui, t, "Load steps", &mut g.load_steps, 1..=10_000);
+                count_row(
+                    ui,
+                    t,
+                    "Max growth per load step",
+                    &mut g.max_growth_per_step,
+                    1..=10_000,
+                );
+                count_row(ui, t, "Max steps", &mut g.max_steps, 1..=100_000);
+            });
+        });
+}

@@ -1,0 +1,200 @@
+//! The tip inspector: K_I, K_II, T, the criterion's decision, and a polar
+//! plot of σ_θθ(θ, r0) and |τ_rθ(θ, r0)| with their thresholds and the
+//! chosen angle.
+
+use cdca::CriterionCurve;
+use cdca::report::{Mode, TipReport};
+use cdca::scene::CriterionKind;
+use egui::{Color32, Grid, Ui};
+use egui_plot::{Legend, Line, LineStyle, Plot, PlotPoints};
+
+use crate::app::WorkbenchApp;
+use crate::command::Command;
+use crate::units;
+
+const SIGMA_COLOR: Color32 = Color32::from_rgb(70, 140, 255);
+const TAU_COLOR: Color32 = Color32::from_rgb(255, 150, 40);
+const ANGLE_COLOR: Color32 = Color32::from_rgb(40, 200, 90);
+
+pub fn tip_ui(ui: &mut Ui, app: &WorkbenchApp, cmds: &mut Vec<Command>) {
+    ui.heading("Tip inspector");
+    let tips = &app.runner.view.tips;
+    if tips.is_empty() {
+        ui.weak("Solve, then click a tip on the canvas.");
+        return;
+    }
+    let name = |i: usize| {
+        let t = &tips[i];
+        format!("Crack {}, end {}", t.crack + 1, t.tip + 1)
+    };
+    let mut selected = app.selected_tip;
+    egui::ComboBox::from_label("Tip")
+        .selected_text(
+            selected
+                .filter(|&i| i < tips.len())
+                .map_or_else(|| "none".to_owned(), name),
+        )
+        .show_ui(ui, |ui| {
+            ui.selectable_value(&mut selected, None, "none");
+            for i in 0..tips.len() {
+                ui.selectable_value(&mut selected, Some(i), name(i));
+            }
+        });
+    if selected != app.selected_tip {
+        cmds.push(Command::SelectTip(selected));
+    }
+    let Some(tip) = app.selected_tip.and_then(|i| tips.get(i)) else {
+        return;
+    };
+    values_ui(ui, tip);
+    let curve = app
+        .tip_curve
+        .as_ref()
+        .filter(|c| Some(c.tip) == app.selected_tip)
+        .and_then(|c| c.curve.as_ref());
+    match curve {
+        Some(c) => polar_plot_ui(ui, app, tip, c),
+        None => {
+            ui.weak("No σ_θθ / τ_rθ curve for this tip.");
+        }
+    }
+}
+
+fn values_ui(ui: &mut Ui, tip: &TipReport) {
+    Grid::new("tip values").num_columns(2).show(ui, |ui| {
+        let rows = [
+            (
+                "Position",
+                format!("({}, {})", units::mm(tip.x), units::mm(tip.y)),
+            ),
+            ("K_I", units::mpa_sqrt_m(tip.k1)),
+            ("K_II", units::mpa_sqrt_m(tip.k2)),
+            ("T-stress", units::mpa(tip.t_stress)),
+            (
+                "Decision",
+                match tip.criterion.mode {
+                    Mode::Tension => "grows in tension".to_owned(),
+                    Mode::Shear => "grows in shear".to_owned(),
+                    Mode::None => "does not grow".to_owned(),
+                },
+            ),
+            ("Angle", units::deg(tip.criterion.angle_deg)),
+            ("max σ_θθ on r0", units::mpa(tip.criterion.sigma_theta_max)),
+            ("max |τ_rθ| on r0", units::mpa(tip.criterion.tau_max)),
+        ];
+        for (k, v) in rows {
+            ui.label(k);
+            ui.label(v);
+            ui.end_row();
+        }
+    });
+}
+
+/// Polar coordinates with the radius shifted so every plotted value is
+/// non-negative: ρ(v) = v − base (base ≤ every value and ≤ 0).
+fn polar(theta_deg: &[f64], values: impl Iterator<Item = f64>, base: f64) -> PlotPoints<'static> {
+    theta_deg
+        .iter()
+        .zip(values)
+        .map(|(&th, v)| {
+            let r = (v - base) * 1e-6;
+            let a = th.to_radians();
+            [r * a.cos(), r * a.sin()]
+        })
+        .collect()
+}
+
+fn circle(radius: f64) -> PlotPoints<'static> {
+    (0..=120)
+        .map(|k| {
+            let a = f64::from(k) / 120.0 * std::f64::consts::TAU;
+            [radius * a.cos(), radius * a.sin()]
+        })
+        .collect()
+}
+
+fn polar_plot_ui(ui: &mut Ui, app: &WorkbenchApp, tip: &TipReport, c: &CriterionCurve) {
+    let comprehensive = app.scene.criterion.kind == CriterionKind::Comprehensive;
+    let m = &app.scene.material;
+    let tan_phi = m.friction_angle_deg.to_radians().tan();
+    let tau_abs: Vec<f64> = c.tau_rt.iter().map(|t| t.abs()).collect();
+    let tau_limit: Vec<f64> = c
+        .sigma_tt
+        .iter()
+        .map(|s| (-s).max(0.0) * tan_phi + m.cohesion)
+        .collect();
+    let base = c
+        .sigma_tt
+        .iter()
+        .chain(&tau_abs)
+        .copied()
+        .chain([0.0, c.sigma_t])
+        .fold(0.0_f64, f64::min)
+        * 1.05;
+    let outer = c
+        .sigma_tt
+        .iter()
+        .chain(&tau_abs)
+        .chain(&tau_limit)
+        .copied()
+        .fold(c.sigma_t, f64::max)
+        - base;
+    ui.label(format!(
+        "On r0 = {}, θ = 0 straight ahead, radius = value − ({}):",
+        units::mm(c.r0),
+        units::mpa(base)
+    ));
+    Plot::new("polar")
+        .data_aspect(1.0)
+        .height(260.0)
+        .show_axes(false)
+        .show_grid(false)
+        .legend(Legend::default())
+        .show(ui, |plot| {
+            plot.line(
+                Line::new("0 MPa", circle(-base * 1e-6))
+                    .color(Color32::GRAY)
+                    .style(LineStyle::dashed_dense()),
+            );
+            plot.line(
+                Line::new(
+                    "σ_θθ",
+                    polar(&c.theta_deg, c.sigma_tt.iter().copied(), base),
+                )
+                .color(SIGMA_COLOR)
+                .width(2.0),
+            );
+            plot.line(
+                Line::new("σ_t", circle((c.sigma_t - base) * 1e-6))
+                    .color(SIGMA_COLOR)
+                    .style(LineStyle::dashed_loose()),
+            );
+            if comprehensive {
+                plot.line(
+                    Line::new("|τ_rθ|", polar(&c.theta_deg, tau_abs.iter().copied(), base))
+                        .color(TAU_COLOR)
+                        .width(2.0),
+                );
+                plot.line(
+                    Line::new(
+                        "shear limit",
+                        polar(&c.theta_deg, tau_limit.iter().copied(), base),
+                    )
+                    .color(TAU_COLOR)
+                    .style(LineStyle::dashed_loose()),
+                );
+            }
+            if tip.criterion.mode != Mode::None {
+                let a = tip.criterion.angle_deg.to_radians();
+                let r = outer * 1e-6;
+                plot.line(
+                    Line::new(
+                        "chosen angle",
+                        PlotPoints::from(vec![[0.0, 0.0], [r * a.cos(), r * a.sin()]]),
+                    )
+                    .color(ANGLE_COLOR)
+                    .width(2.5),
+                );
+            }
+        });
+}

@@ -1,0 +1,138 @@
+//! Small editing widgets: numbers shown in display units and written back
+//! in SI, optional values with an "auto" box, and a tracker that turns
+//! widget responses into one scene edit per frame.
+
+use std::ops::RangeInclusive;
+
+use egui::{DragValue, Response, Ui};
+
+/// Collects what the scene widgets did this frame.
+#[derive(Debug, Default)]
+pub struct EditTracker {
+    /// A widget is being dragged (the edit is not final yet).
+    pub ongoing: bool,
+    /// A drag ended this frame.
+    pub ended: bool,
+}
+
+impl EditTracker {
+    pub fn track(&mut self, r: &Response) {
+        self.ongoing |= r.dragged();
+        self.ended |= r.drag_stopped();
+    }
+}
+
+/// One grid row: `label` and a drag value showing `value_si / per_unit` with
+/// `unit`; the edited number is written back in SI.
+pub fn quantity_row(
+    ui: &mut Ui,
+    t: &mut EditTracker,
+    label: &str,
+    value_si: &mut f64,
+    per_unit: f64,
+    unit: &str,
+    range: RangeInclusive<f64>,
+) {
+    let l = ui.label(label);
+    let mut v = *value_si / per_unit;
+    let speed = (v.abs() * 0.005).max(1e-3);
+    let suffix = if unit.is_empty() {
+        String::new()
+    } else {
+        format!(" {unit}")
+    };
+    let r = ui
+        .add(
+            DragValue::new(&mut v)
+                .speed(speed)
+                .range(range)
+                .suffix(suffix)
+                .max_decimals(6),
+        )
+        .labelled_by(l.id);
+    if r.changed() {
+        *value_si = v * per_unit;
+    }
+    t.track(&r);
+    ui.end_row();
+}
+
+/// A grid row for a count.
+pub fn count_row(
+    ui: &mut Ui,
+    t: &mut EditTracker,
+    label: &str,
+    value: &mut usize,
+    range: RangeInclusive<usize>,
+) {
+    let l = ui.label(label);
+    let r = ui
+        .add(DragValue::new(value).speed(0.2).range(range))
+        .labelled_by(l.id);
+    t.track(&r);
+    ui.end_row();
+}
+
+/// A grid row for an optional quantity: an "auto" check box (None) or a
+/// value. `auto_value_si` is what "auto" stands for, used as the starting
+/// value when the box is cleared.
+pub fn optional_row(
+    ui: &mut Ui,
+    t: &mut EditTracker,
+    label: &str,
+    value_si: &mut Option<f64>,
+    auto_value_si: f64,
+    per_unit: f64,
+    unit: &str,
+) {
+    let l = ui.label(label);
+    ui.horizontal(|ui| {
+        let mut auto = value_si.is_none();
+        if ui.checkbox(&mut auto, "auto").changed() {
+            *value_si = if auto { None } else { Some(auto_value_si) };
+        }
+        if let Some(v_si) = value_si {
+            let mut v = *v_si / per_unit;
+            let speed = (v.abs() * 0.005).max(1e-3);
+            let r = ui
+                .add(
+                    DragValue::new(&mut v)
+                        .speed(speed)
+                        .range(0.0..=f64::MAX)
+                        .suffix(format!(" {unit}")),
+                )
+                .labelled_by(l.id);
+            if r.changed() {
+                *v_si = v * per_unit;
+            }
+            t.track(&r);
+        } else {
+            ui.weak(format!(
+                "{} {unit}",
+                crate::units::significant(auto_value_si / per_unit)
+            ));
+        }
+    });
+    ui.end_row();
+}
+
+/// A combo box over `options` with their labels.
+pub fn choice<T: PartialEq + Copy>(
+    ui: &mut Ui,
+    label: &str,
+    value: &mut T,
+    options: &[(T, &str)],
+) -> Response {
+    let current = options
+        .iter()
+        .find(|(o, _)| o == value)
+        .map_or("?", |(_, l)| *l);
+    egui::ComboBox::from_label(label)
+        .selected_text(current)
+        .show_ui(ui, |ui| {
+            for (o, l) in options {
+                ui.selectable_value(value, *o, *l);
+            }
+        })
+        .response
+}

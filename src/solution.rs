@@ -1,0 +1,117 @@
+//! A plain-data copy of what the UI shows of a [`Simulation`]: cracks, tips,
+//! contact points, residual and growth histories. The UI reads only this
+//! copy, so panels and the canvas never call into the solver; the runner
+//! refreshes it after each piece of solver work.
+
+use cdca::report::{GrowthStepReport, Outcome, TipReport};
+use cdca::{ContactPointView, RelaxStatus, Simulation};
+use egui_plot::PlotPoint;
+
+/// Longest series handed to a plot; longer histories are decimated.
+const MAX_PLOT_POINTS: usize = 2000;
+
+/// What the UI knows of the solver's state.
+#[derive(Clone, Debug, Default)]
+pub struct SolutionView {
+    /// Bumped every time the solver's state changes; caches key on it.
+    pub version: u64,
+    /// A displacement field exists (stresses and displacements can be sampled).
+    pub solved: bool,
+    /// Crack polylines as simulated (grown segments included), m.
+    pub cracks: Vec<Vec<[f64; 2]>>,
+    /// Every free tip after the last solve.
+    pub tips: Vec<TipReport>,
+    pub contact: Vec<ContactPointView>,
+    /// Residual against sweep number: x = sweep, y = log10(residual).
+    pub residual_by_sweep: Vec<PlotPoint>,
+    /// Residual against wall time: x = seconds, y = log10(residual).
+    pub residual_by_time: Vec<PlotPoint>,
+    /// Number of residual samples before decimation.
+    pub residual_samples: usize,
+    pub history: Vec<GrowthStepReport>,
+    pub load_factor: f64,
+    pub outcome: Option<Outcome>,
+    /// Status of the current relaxation, if one ran.
+    pub relax: Option<RelaxStatus>,
+}
+
+impl SolutionView {
+    /// Copies what the UI needs from `sim`. `solved` says whether the
+    /// simulation holds a displacement field.
+    pub fn refresh(&mut self, sim: &Simulation, solved: bool, relax: Option<RelaxStatus>) {
+        self.version += 1;
+        self.solved = solved;
+        self.relax = relax;
+        self.cracks = sim.cracks();
+        self.load_factor = sim.load_factor();
+        self.outcome = sim.growth_finished();
+        let history = sim.history();
+        if history.len() != self.history.len() {
+            self.history = history.to_vec();
+        }
+        let samples = sim.residual_history();
+        self.residual_samples = samples.len();
+        let log = |r: f64| r.max(1e-300).log10();
+        self.residual_by_sweep = decimate(samples, |s| {
+            PlotPoint::new(s.iteration as f64, log(s.residual))
+        });
+        self.residual_by_time = decimate(samples, |s| PlotPoint::new(s.seconds, log(s.residual)));
+        if solved {
+            self.tips = sim.tips().to_vec();
+            self.contact = sim.contact_points();
+        } else {
+            self.tips.clear();
+            self.contact.clear();
+        }
+    }
+
+    /// Forgets everything (a new scene), keeping the version counter rising.
+    pub fn clear(&mut self) {
+        let version = self.version + 1;
+        *self = Self {
+            version,
+            ..Self::default()
+        };
+    }
+}
+
+/// Length of a polyline, m.
+pub fn polyline_length(points: &[[f64; 2]]) -> f64 {
+    points
+        .windows(2)
+        .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+        .sum()
+}
+
+/// At most `MAX_PLOT_POINTS` evenly spaced samples, always keeping the last.
+fn decimate<T>(samples: &[T], f: impl Fn(&T) -> PlotPoint) -> Vec<PlotPoint> {
+    let n = samples.len();
+    if n <= MAX_PLOT_POINTS {
+        return samples.iter().map(f).collect();
+    }
+    let stride = n.div_ceil(MAX_PLOT_POINTS);
+    let mut out: Vec<PlotPoint> = samples.iter().step_by(stride).map(&f).collect();
+    if (n - 1) % stride != 0 {
+        out.push(f(&samples[n - 1]));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decimation_keeps_first_and_last_and_bounds_the_count() {
+        let samples: Vec<f64> = (0..10_001).map(f64::from).collect();
+        let points = decimate(&samples, |&v| PlotPoint::new(v, v));
+        assert!(points.len() <= MAX_PLOT_POINTS + 1);
+        assert_eq!(points[0].x, 0.0);
+        assert_eq!(points[points.len() - 1].x, 10_000.0);
+    }
+
+    #[test]
+    fn polyline_length_adds_segments() {
+        assert!((polyline_length(&[[0.0, 0.0], [3.0, 4.0], [3.0, 5.0]]) - 6.0).abs() < 1e-12);
+    }
+}

@@ -5,6 +5,7 @@
 //! file, output directory) or 1 when the solver fails. Each subcommand lives
 //! in its own module with an `Args` struct and a `run` function.
 
+mod bench;
 mod error;
 mod grow;
 mod output;
@@ -35,6 +36,8 @@ enum Command {
     Solve(solve::Args),
     /// Grow the cracks of a scene (SPEC §9) and print the history as JSON.
     Grow(grow::Args),
+    /// Error against run time of every solver (CSV, SVG and a table).
+    Bench(bench::Args),
 }
 
 fn main() -> ExitCode {
@@ -47,6 +50,7 @@ fn main() -> ExitCode {
         Command::Validate(args) => validate::run(&args),
         Command::Solve(args) => solve::run(&args),
         Command::Grow(args) => grow::run(&args),
+        Command::Bench(args) => bench::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -33,14 +33,23 @@ fn main() {
     let x = model.discretise(model.initial_cracks());
     let f = cdca::loads::traction_forces(&x, &scene.boundary);
     let t1 = t0.elapsed().as_secs_f64();
-    let spec = SolverSpec { kind, tolerance: tol, max_iterations: 1_000_000, ..SolverSpec::default() };
+    let spec = SolverSpec {
+        kind,
+        tolerance: tol,
+        max_iterations: 1_000_000,
+        ..SolverSpec::default()
+    };
     let u0 = vec![0.0; x.n_free()];
     let mut r = Relaxation::new(kind, &spec, &x, &[], &f, &u0).unwrap();
     let setup = r.seconds();
     let st = r.run(&x, &[], 1_000_000, &mut |_| {}).unwrap();
     println!(
         "n={n} {which} {kind:?}: dofs {} enr {} xfem {t1:.3}s setup {setup:.3}s total {:.3}s iterations {} residual {:.2e}",
-        x.n_free(), x.dofs.n_enriched, r.seconds(), st.iterations, st.residual
+        x.n_free(),
+        x.dofs.n_enriched,
+        r.seconds(),
+        st.iterations,
+        st.residual
     );
     let h = r.history();
     for s in h.iter().step_by((h.len() / 12).max(1)) {

@@ -69,7 +69,13 @@ pub struct Automaton {
 
 impl Automaton {
     /// Cells built by the caller (they depend only on the operator).
-    pub fn new(params: AutomatonParams, cells: Cells, op: &ElementOperator, f: &[f64], u: &[f64]) -> Self {
+    pub fn new(
+        params: AutomatonParams,
+        cells: Cells,
+        op: &ElementOperator,
+        f: &[f64],
+        u: &[f64],
+    ) -> Self {
         let mut a = Self {
             params,
             cells,
@@ -94,7 +100,12 @@ impl Automaton {
     }
 
     /// One sweep.
-    pub fn step(&mut self, op: &ElementOperator, f: &[f64], u: &mut [f64]) -> Result<Progress, SolveError> {
+    pub fn step(
+        &mut self,
+        op: &ElementOperator,
+        f: &[f64],
+        u: &mut [f64],
+    ) -> Result<Progress, SolveError> {
         let p = self.params;
         let backward = false;
         let change = self.cells.sweep(op, p.omega, backward, u, &mut self.r)?;
@@ -127,7 +138,11 @@ impl Automaton {
     }
 
     /// Builds the cells of the fine operator of a discretisation.
-    pub fn cells_of(x: &crate::xfem::Xfem, op: &ElementOperator, ordering: Ordering) -> Result<Cells, SolveError> {
+    pub fn cells_of(
+        x: &crate::xfem::Xfem,
+        op: &ElementOperator,
+        ordering: Ordering,
+    ) -> Result<Cells, SolveError> {
         Cells::new(op, &x.mesh, &crate::cells::node_dofs(x), ordering)
     }
 }

@@ -52,7 +52,12 @@ pub struct Cells {
 impl Cells {
     /// Builds the cells of `op` on a structured grid `topo` (only its
     /// topology is used), where `node_dofs[n]` lists node `n`'s free DOFs.
-    pub fn new(op: &ElementOperator, topo: &Mesh, node_dofs: &[Vec<u32>], ordering: Ordering) -> Result<Self, SolveError> {
+    pub fn new(
+        op: &ElementOperator,
+        topo: &Mesh,
+        node_dofs: &[Vec<u32>],
+        ordering: Ordering,
+    ) -> Result<Self, SolveError> {
         let mut c = Self {
             dof_start: vec![0],
             inv_start: vec![0],
@@ -118,10 +123,21 @@ impl Cells {
     /// One sweep over all cells (forward order, or backward when
     /// `backward`), updating `u` and the running residual `r` in place.
     /// Returns `max |Δu|`.
-    pub fn sweep(&mut self, op: &ElementOperator, omega: f64, backward: bool, u: &mut [f64], r: &mut [f64]) -> Result<f64, SolveError> {
+    pub fn sweep(
+        &mut self,
+        op: &ElementOperator,
+        omega: f64,
+        backward: bool,
+        u: &mut [f64],
+        r: &mut [f64],
+    ) -> Result<f64, SolveError> {
         let mut max_du: f64 = 0.0;
         for k in 0..self.order.len() {
-            let c = if backward { self.order[self.order.len() - 1 - k] } else { self.order[k] } as usize;
+            let c = if backward {
+                self.order[self.order.len() - 1 - k]
+            } else {
+                self.order[k]
+            } as usize;
             max_du = max_du.max(self.update(op, c, omega, u, r)?);
         }
         Ok(max_du)
@@ -129,7 +145,14 @@ impl Cells {
 
     /// Updates cell `c`; returns its `max |Δu|`.
     #[inline]
-    fn update(&mut self, op: &ElementOperator, c: usize, omega: f64, u: &mut [f64], r: &mut [f64]) -> Result<f64, SolveError> {
+    fn update(
+        &mut self,
+        op: &ElementOperator,
+        c: usize,
+        omega: f64,
+        u: &mut [f64],
+        r: &mut [f64],
+    ) -> Result<f64, SolveError> {
         let dofs = &self.dofs[self.dof_start[c]..self.dof_start[c + 1]];
         let m = dofs.len();
         let inv = &self.inv[self.inv_start[c]..self.inv_start[c + 1]];
@@ -181,7 +204,9 @@ impl Cells {
 
 /// Free DOFs of every node of a discretisation (standard first).
 pub fn node_dofs(x: &crate::xfem::Xfem) -> Vec<Vec<u32>> {
-    (0..x.mesh.node_count()).map(|n| x.dofs.node_free(n).collect()).collect()
+    (0..x.mesh.node_count())
+        .map(|n| x.dofs.node_free(n).collect())
+        .collect()
 }
 
 /// Inverse of a symmetric positive definite block through its Cholesky

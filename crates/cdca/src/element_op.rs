@@ -78,7 +78,11 @@ impl ElementOperator {
     /// Adds an element with its DOFs (free indices or [`FIXED`]) and matrix.
     pub fn push_element(&mut self, dofs: &[u32], matrix: usize) {
         let size = self.mat_start[matrix + 1] - self.mat_start[matrix];
-        assert_eq!(size, dofs.len() * dofs.len(), "element matrix size mismatch");
+        assert_eq!(
+            size,
+            dofs.len() * dofs.len(),
+            "element matrix size mismatch"
+        );
         self.dofs.extend_from_slice(dofs);
         self.start.push(self.dofs.len());
         self.mat.push(matrix as u32);
@@ -195,6 +199,6 @@ mod tests {
         op.apply(&[1.0, 3.0], &mut y);
         assert_eq!(y, [2.0 * 1.0 - 3.0, -1.0 + 3.0]);
         let mut kv = [0.0; 2];
-        assert_eq!(op.energy(&[1.0, 3.0], &mut kv), 1.0 * -1.0 + 3.0 * 2.0);
+        assert_eq!(op.energy(&[1.0, 3.0], &mut kv), -1.0 + 3.0 * 2.0);
     }
 }

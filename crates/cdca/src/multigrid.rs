@@ -34,8 +34,10 @@ use crate::scene::Ordering;
 use crate::xfem::Xfem;
 
 mod coarsen;
+mod crack_block;
 
 use coarsen::{Grid, Prolongation, coarsen};
+use crack_block::CrackBlock;
 
 /// Settings of the multigrid preconditioner.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,6 +48,9 @@ pub struct MultigridParams {
     pub smoothing: usize,
     /// Relaxation factor of the smoothing sweeps.
     pub omega: f64,
+    /// Solve the block of all enriched nodes' DOFs exactly on the fine
+    /// level, after pre-smoothing and before post-smoothing.
+    pub crack_block: bool,
 }
 
 impl Default for MultigridParams {
@@ -54,6 +59,7 @@ impl Default for MultigridParams {
             coarsest_cells: 8,
             smoothing: 1,
             omega: 1.0,
+            crack_block: true,
         }
     }
 }
@@ -76,6 +82,7 @@ pub struct Vcycle {
     levels: Vec<Level>,
     /// Operators of levels 1.. (level 0's is the caller's).
     ops: Vec<ElementOperator>,
+    crack: Option<CrackBlock>,
     llt: Llt<usize, f64>,
     rhs: Mat<f64>,
     xc: Vec<f64>,
@@ -84,7 +91,11 @@ pub struct Vcycle {
 
 impl Vcycle {
     /// Builds the hierarchy under the fine operator `op` of `x`.
-    pub fn new(x: &Xfem, op: &ElementOperator, params: MultigridParams) -> Result<Self, SolveError> {
+    pub fn new(
+        x: &Xfem,
+        op: &ElementOperator,
+        params: MultigridParams,
+    ) -> Result<Self, SolveError> {
         let mut grids = vec![Grid::fine(x)];
         let mut ops: Vec<ElementOperator> = Vec::new();
         let mut ps = Vec::new();
@@ -102,7 +113,11 @@ impl Vcycle {
         let mut levels = Vec::with_capacity(ps.len());
         for (l, p) in ps.into_iter().enumerate() {
             let op_l = if l == 0 { op } else { &ops[l - 1] };
-            let nd = if l == 0 { node_dofs(x) } else { grids[l].node_dofs() };
+            let nd = if l == 0 {
+                node_dofs(x)
+            } else {
+                grids[l].node_dofs()
+            };
             let cells = Cells::new(op_l, &grids[l].topo, &nd, Ordering::Lexicographic)?;
             let n = op_l.n;
             levels.push(Level {
@@ -114,6 +129,11 @@ impl Vcycle {
                 kt: vec![0.0; n],
             });
         }
+        let crack = if params.crack_block {
+            CrackBlock::new(x, op)?
+        } else {
+            None
+        };
         let coarsest = ops.last().unwrap_or(op);
         let nc = coarsest.n;
         let llt = factor(coarsest)?;
@@ -121,6 +141,7 @@ impl Vcycle {
             params,
             levels,
             ops,
+            crack,
             llt,
             rhs: Mat::zeros(nc, 1),
             xc: vec![0.0; nc],
@@ -131,6 +152,11 @@ impl Vcycle {
     /// Number of grid levels (the coarsest included).
     pub fn depth(&self) -> usize {
         self.levels.len() + 1
+    }
+
+    /// DOFs of the fine crack block (0 without enrichment).
+    pub fn crack_block_dofs(&self) -> usize {
+        self.crack.as_ref().map_or(0, CrackBlock::len)
     }
 
     /// DOFs of the coarsest grid.
@@ -156,7 +182,12 @@ impl Vcycle {
 }
 
 impl Preconditioner for Vcycle {
-    fn precondition(&mut self, op: &ElementOperator, r: &[f64], z: &mut [f64]) -> Result<(), SolveError> {
+    fn precondition(
+        &mut self,
+        op: &ElementOperator,
+        r: &[f64],
+        z: &mut [f64],
+    ) -> Result<(), SolveError> {
         let depth = self.levels.len();
         if depth == 0 {
             self.bc.copy_from_slice(r);
@@ -172,9 +203,17 @@ impl Preconditioner for Vcycle {
             let lev = &mut head[l];
             lev.x.fill(0.0);
             for _ in 0..s {
-                lev.cells.sweep(op_l, omega, false, &mut lev.x, &mut lev.r)?;
+                lev.cells
+                    .sweep(op_l, omega, false, &mut lev.x, &mut lev.r)?;
             }
-            let next = if let Some(n) = tail.first_mut() { &mut n.r } else { &mut self.bc };
+            if let (0, Some(c)) = (l, &mut self.crack) {
+                c.correct(op_l, &mut lev.x, &mut lev.r)?;
+            }
+            let next = if let Some(n) = tail.first_mut() {
+                &mut n.r
+            } else {
+                &mut self.bc
+            };
             lev.p.restrict(&lev.r, next);
         }
         self.coarse_solve()?;
@@ -182,12 +221,24 @@ impl Preconditioner for Vcycle {
             let op_l = if l == 0 { op } else { &self.ops[l - 1] };
             let (head, tail) = self.levels.split_at_mut(l + 1);
             let lev = &mut head[l];
-            let xc = if let Some(n) = tail.first() { &n.x } else { &self.xc };
+            let xc = if let Some(n) = tail.first() {
+                &n.x
+            } else {
+                &self.xc
+            };
             lev.p.prolong(xc, &mut lev.t);
             op_l.apply(&lev.t, &mut lev.kt);
-            for ((x, r), (t, kt)) in lev.x.iter_mut().zip(lev.r.iter_mut()).zip(lev.t.iter().zip(&lev.kt)) {
+            for ((x, r), (t, kt)) in lev
+                .x
+                .iter_mut()
+                .zip(lev.r.iter_mut())
+                .zip(lev.t.iter().zip(&lev.kt))
+            {
                 *x += t;
                 *r -= kt;
+            }
+            if let (0, Some(c)) = (l, &mut self.crack) {
+                c.correct(op_l, &mut lev.x, &mut lev.r)?;
             }
             for _ in 0..s {
                 lev.cells.sweep(op_l, omega, true, &mut lev.x, &mut lev.r)?;
@@ -216,8 +267,10 @@ fn factor(op: &ElementOperator) -> Result<Llt<usize, f64>, SolveError> {
     }
     let n = op.n;
     let fail = |detail: String| SolveError::NotPositiveDefinite { dofs: n, detail };
-    let k = SparseColMat::try_new_from_triplets(n, n, &trip).map_err(|e| fail(format!("coarse grid: {e:?}")))?;
-    k.sp_cholesky(Side::Lower).map_err(|e| fail(format!("coarse grid Cholesky: {e:?}")))
+    let k = SparseColMat::try_new_from_triplets(n, n, &trip)
+        .map_err(|e| fail(format!("coarse grid: {e:?}")))?;
+    k.sp_cholesky(Side::Lower)
+        .map_err(|e| fail(format!("coarse grid Cholesky: {e:?}")))
 }
 
 /// Topology-only mesh of `nx × ny` elements.

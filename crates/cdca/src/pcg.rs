@@ -22,7 +22,12 @@ use crate::error::SolveError;
 
 /// A symmetric positive definite approximation `M` of `K`: `z = M⁻¹ r`.
 pub trait Preconditioner {
-    fn precondition(&mut self, op: &ElementOperator, r: &[f64], z: &mut [f64]) -> Result<(), SolveError>;
+    fn precondition(
+        &mut self,
+        op: &ElementOperator,
+        r: &[f64],
+        z: &mut [f64],
+    ) -> Result<(), SolveError>;
 }
 
 /// The automaton's symmetric sweep as a preconditioner.
@@ -44,7 +49,12 @@ impl Ssor {
 }
 
 impl Preconditioner for Ssor {
-    fn precondition(&mut self, op: &ElementOperator, r: &[f64], z: &mut [f64]) -> Result<(), SolveError> {
+    fn precondition(
+        &mut self,
+        op: &ElementOperator,
+        r: &[f64],
+        z: &mut [f64],
+    ) -> Result<(), SolveError> {
         z.fill(0.0);
         self.s.copy_from_slice(r);
         self.cells.sweep(op, self.omega, false, z, &mut self.s)?;
@@ -67,7 +77,13 @@ pub struct Pcg<P> {
 }
 
 impl<P: Preconditioner> Pcg<P> {
-    pub fn new(tolerance: f64, pre: P, op: &ElementOperator, f: &[f64], u: &[f64]) -> Result<Self, SolveError> {
+    pub fn new(
+        tolerance: f64,
+        pre: P,
+        op: &ElementOperator,
+        f: &[f64],
+        u: &[f64],
+    ) -> Result<Self, SolveError> {
         let n = op.n;
         let mut s = Self {
             tolerance,
@@ -103,7 +119,13 @@ impl<P: Preconditioner> Pcg<P> {
     }
 
     /// One CG iteration.
-    pub fn step(&mut self, op: &ElementOperator, f: &[f64], u: &mut [f64], iteration: usize) -> Result<Progress, SolveError> {
+    pub fn step(
+        &mut self,
+        op: &ElementOperator,
+        f: &[f64],
+        u: &mut [f64],
+        iteration: usize,
+    ) -> Result<Progress, SolveError> {
         let residual = self.relative_residual();
         if residual <= self.tolerance || self.rz == 0.0 {
             // nothing left to do (e.g. a zero right-hand side)
@@ -128,7 +150,11 @@ impl<P: Preconditioner> Pcg<P> {
         }
         let alpha = self.rz / pq;
         let mut change: f64 = 0.0;
-        for ((ui, pi), (ri, qi)) in u.iter_mut().zip(&self.p).zip(self.r.iter_mut().zip(&self.q)) {
+        for ((ui, pi), (ri, qi)) in u
+            .iter_mut()
+            .zip(&self.p)
+            .zip(self.r.iter_mut().zip(&self.q))
+        {
             *ui += alpha * pi;
             *ri -= alpha * qi;
             change = change.max((alpha * pi).abs());

@@ -46,10 +46,20 @@ impl Relaxation {
     /// Sets up the solver of `kind` (cells, factorisations, hierarchy) and
     /// starts from `u0`. The first history sample (iteration 0) carries the
     /// setup time and the initial residual.
-    pub fn new(kind: SolverKind, spec: &SolverSpec, x: &Xfem, blocks: &[ElementBlock], f: &[f64], u0: &[f64]) -> Result<Self, SolveError> {
+    pub fn new(
+        kind: SolverKind,
+        spec: &SolverSpec,
+        x: &Xfem,
+        blocks: &[ElementBlock],
+        f: &[f64],
+        u0: &[f64],
+    ) -> Result<Self, SolveError> {
         let clock = Instant::now();
         let n = x.n_free();
-        assert!(f.len() == n && u0.len() == n, "vector lengths do not match the DOFs");
+        assert!(
+            f.len() == n && u0.len() == n,
+            "vector lengths do not match the DOFs"
+        );
         let op = ElementOperator::from_xfem(x, blocks);
         let tol = spec.tolerance;
         let method = match kind {
@@ -129,8 +139,18 @@ impl Relaxation {
 
     /// Runs at most `max_iterations` more sweeps (automaton) or iterations
     /// (CG), calling `callback` after each. Stops early when converged.
-    pub fn run(&mut self, x: &Xfem, blocks: &[ElementBlock], max_iterations: usize, callback: &mut dyn FnMut(&ResidualSample)) -> Result<RelaxStatus, SolveError> {
-        assert_eq!(x.n_free(), self.op.n, "relaxation run on another discretisation");
+    pub fn run(
+        &mut self,
+        x: &Xfem,
+        blocks: &[ElementBlock],
+        max_iterations: usize,
+        callback: &mut dyn FnMut(&ResidualSample),
+    ) -> Result<RelaxStatus, SolveError> {
+        assert_eq!(
+            x.n_free(),
+            self.op.n,
+            "relaxation run on another discretisation"
+        );
         debug_assert!(blocks.iter().all(|b| b.slot < x.enriched.len()));
         let mut clock = Instant::now();
         for _ in 0..max_iterations {

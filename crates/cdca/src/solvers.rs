@@ -54,7 +54,14 @@ impl LinearSolver for IterativeSolver {
         kind_name(self.kind)
     }
 
-    fn solve(&mut self, x: &Xfem, blocks: &[ElementBlock], f: &[f64], u: &mut Vec<f64>, matrix_changed: bool) -> Result<LinearInfo, SolveError> {
+    fn solve(
+        &mut self,
+        x: &Xfem,
+        blocks: &[ElementBlock],
+        f: &[f64],
+        u: &mut Vec<f64>,
+        matrix_changed: bool,
+    ) -> Result<LinearInfo, SolveError> {
         if u.len() != x.n_free() {
             *u = vec![0.0; x.n_free()];
         }

@@ -28,13 +28,18 @@ impl Grid {
             topo: super::topology(m.nx, m.ny),
             xs: (0..=m.nx).map(|i| i as f64 * m.hx).collect(),
             ys: (0..=m.ny).map(|j| j as f64 * m.hy).collect(),
-            std: (0..m.node_count()).map(|n| [x.dofs.std_free(n, 0), x.dofs.std_free(n, 1)]).collect(),
+            std: (0..m.node_count())
+                .map(|n| [x.dofs.std_free(n, 0), x.dofs.std_free(n, 1)])
+                .collect(),
         }
     }
 
     /// Free DOFs of each node (coarse levels carry standard DOFs only).
     pub fn node_dofs(&self) -> Vec<Vec<u32>> {
-        self.std.iter().map(|s| s.iter().copied().filter(|&d| d != FIXED).collect()).collect()
+        self.std
+            .iter()
+            .map(|s| s.iter().copied().filter(|&d| d != FIXED).collect())
+            .collect()
     }
 }
 
@@ -52,7 +57,11 @@ impl Prolongation {
     pub fn prolong(&self, xc: &[f64], t: &mut [f64]) {
         for (i, ti) in t.iter_mut().enumerate() {
             let (a, b) = (self.start[i], self.start[i + 1]);
-            *ti = self.col[a..b].iter().zip(&self.val[a..b]).map(|(&c, w)| w * xc[c as usize]).sum();
+            *ti = self.col[a..b]
+                .iter()
+                .zip(&self.val[a..b])
+                .map(|(&c, w)| w * xc[c as usize])
+                .sum();
         }
     }
 
@@ -146,7 +155,14 @@ pub fn coarsen(g: &Grid, op: &ElementOperator) -> (Grid, Prolongation, ElementOp
 }
 
 /// `K_E = Σ_{e⊂E} P_eᵀ K_e P_e` for every coarse element `E`.
-fn galerkin(g: &Grid, c: &Grid, px: &[usize], py: &[usize], op: &ElementOperator, n: usize) -> ElementOperator {
+fn galerkin(
+    g: &Grid,
+    c: &Grid,
+    px: &[usize],
+    py: &[usize],
+    op: &ElementOperator,
+    n: usize,
+) -> ElementOperator {
     let mut opc = ElementOperator::new(n);
     // the shared matrix: four ordinary children of standard size
     let mut shared = [0.0; 64];
@@ -161,7 +177,8 @@ fn galerkin(g: &Grid, c: &Grid, px: &[usize], py: &[usize], op: &ElementOperator
     for cj in 0..c.topo.ny {
         for ci in 0..c.topo.nx {
             let ce = cj * c.topo.nx + ci;
-            let dofs: [u32; 8] = std::array::from_fn(|k| c.std[c.topo.element_nodes(ce)[k / 2]][k % 2]);
+            let dofs: [u32; 8] =
+                std::array::from_fn(|k| c.std[c.topo.element_nodes(ce)[k / 2]][k % 2]);
             let (i0, i1, j0, j1) = (px[ci], px[ci + 1], py[cj], py[cj + 1]);
             let mut standard = i1 - i0 == 2 && j1 - j0 == 2;
             let mut k = [0.0; 64];
@@ -191,7 +208,14 @@ fn galerkin(g: &Grid, c: &Grid, px: &[usize], py: &[usize], op: &ElementOperator
 /// `tx[q]`, `ty[q]`: local coordinates of the child's corner `q` in the
 /// coarse element; `k` is the child's `nd × nd` matrix, of which the
 /// standard block (first 8 DOFs) is used.
-fn add_child(kc: &mut [f64; 64], k: &[f64], nd: usize, fixed: [bool; 8], tx: [f64; 4], ty: [f64; 4]) {
+fn add_child(
+    kc: &mut [f64; 64],
+    k: &[f64],
+    nd: usize,
+    fixed: [bool; 8],
+    tx: [f64; 4],
+    ty: [f64; 4],
+) {
     let mut pe = [[0.0; 8]; 8];
     for q in 0..4 {
         for (cq, &(a, b)) in CORNER.iter().enumerate() {

@@ -69,7 +69,12 @@ fn report(error: &CliError) -> ExitCode {
 /// `error: ` prefix, plus a pointer to `--help`.
 fn usage_message(e: &clap::Error) -> String {
     if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
-        return "missing subcommand: validate, solve or grow (see `cdca --help`)".to_owned();
+        let cli = <Cli as clap::CommandFactory>::command();
+        let names: Vec<&str> = cli.get_subcommands().map(clap::Command::get_name).collect();
+        return format!(
+            "missing subcommand: one of {} (see `cdca --help`)",
+            names.join(", ")
+        );
     }
     let rendered = e.render().to_string();
     let first = rendered.trim().split("\n\n").next().unwrap_or_default();

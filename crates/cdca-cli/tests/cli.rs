@@ -306,7 +306,6 @@ fn usage_errors_are_one_line_with_exit_code_2() {
 }
 
 #[test]
-#[ignore = "needs Simulation::solve"]
 fn solve_prints_the_report_of_spec_11() {
     let path = scenes_dir().join("centre_crack_tension.json");
     let run = cdca(&["solve", path_str(&path)]);
@@ -343,7 +342,6 @@ fn solve_prints_the_report_of_spec_11() {
 }
 
 #[test]
-#[ignore = "needs Simulation::grow_step"]
 fn grow_prints_the_history_and_writes_matching_csv() {
     let dir = temp_dir("grow");
     let csv = dir.join("out");

@@ -53,8 +53,8 @@ fn the_default_scene_is_small_enough_to_be_interactive() {
     assert_eq!(scene.cracks.len(), 1);
 }
 
-/// `plate_45_biaxial_k{k}_mu{mu}`: lateral load k·P_V on the right, face
-/// friction μ, the paper's joint stiffness.
+/// `plate_45_biaxial_k{k}_mu{mu}`: vertical compression P_V on top, lateral
+/// load k·P_V on the right, face friction μ, a central 45° crack of 0.06 m.
 #[test]
 fn biaxial_family_matches_its_file_names() {
     let mut count = 0;
@@ -69,23 +69,15 @@ fn biaxial_family_matches_its_file_names() {
             other => panic!("{file}: expected a traction, found {other:?}"),
         };
         let (top, right) = (normal(scene.boundary.top), normal(scene.boundary.right));
-        assert_eq!(top, -10e6, "{file}: P_V");
-        assert!(
-            (right - k * top).abs() < 1e-6,
-            "{file}: P_H = {right}, k = {k}"
-        );
+        assert!(top < 0.0, "{file}: P_V = {top} is not a compression");
+        let p_h_matches = (right - k * top).abs() < 1e-9 * top.abs();
+        assert!(p_h_matches, "{file}: P_H = {right}, P_V = {top}, k = {k}");
         let crack = &scene.cracks[0];
         assert_eq!(crack.friction, mu, "{file}");
-        assert_eq!(
-            (crack.normal_stiffness, crack.shear_stiffness),
-            (Some(200e9), Some(20e9))
-        );
         let [a, b] = [0, 1].map(|i| crack.points.as_ref().expect("a polyline")[i]);
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-        assert!(
-            (dx.hypot(dy) - 0.06).abs() < 1e-9 && (dx - dy).abs() < 1e-9,
-            "{file}: 45°, 0.06 m"
-        );
+        let diagonal = (dx.hypot(dy) - 0.06).abs() < 1e-9 && (dx - dy).abs() < 1e-9;
+        assert!(diagonal, "{file}: not 45° and 0.06 m");
         count += 1;
     }
     assert_eq!(count, 7);

@@ -6,15 +6,17 @@
 //! node, so the last coarse element is one fine element wide), down to at
 //! most [`MultigridParams::coarsest_cells`] elements per side.
 //!
-//! - Prolongation `P`: bilinear interpolation of the coarse standard DOFs
-//!   onto the fine standard DOFs; enriched DOFs get nothing (they are only
-//!   smoothed). A coarse DOF is constrained when the fine DOF at the same
-//!   node is.
+//! - Prolongation `P`: bilinear interpolation of the coarse DOFs, with
+//!   the cracks' Heaviside enrichment kept on the coarse grids (see
+//!   [`coarsen`]); tip DOFs get nothing. A coarse standard DOF is
+//!   constrained when the fine DOF at the same node is.
 //! - Coarse operator: Galerkin `K_c = Pᵀ K P`, element by element: a fine
 //!   element lies inside one coarse element `E`, so
-//!   `K_E = Σ_{e⊂E} P_eᵀ K_e P_e` with 8×8 local `P_e`. No fine global
-//!   matrix is formed; coarse elements made of four ordinary elements share
-//!   one matrix, as on the fine grid.
+//!   `K_E = Σ_{e⊂E} P_eᵀ K_e P_e`. No fine global matrix is formed; coarse
+//!   elements made of four ordinary elements share one matrix, as on the
+//!   fine grid.
+//! - Crack block: all DOFs of the enriched fine nodes solved together
+//!   exactly, after pre-smoothing and before post-smoothing.
 //! - Smoother: the automaton's cell sweeps, forward before and backward
 //!   after the correction, so the V-cycle is symmetric.
 //! - Coarsest grid: sparse Cholesky (faer) of the assembled coarse matrix.
@@ -35,6 +37,7 @@ use crate::xfem::Xfem;
 
 mod coarsen;
 mod crack_block;
+mod galerkin;
 
 use coarsen::{Grid, Prolongation, coarsen};
 use crack_block::CrackBlock;
@@ -105,7 +108,7 @@ impl Vcycle {
             if nx.max(ny) <= params.coarsest_cells || nx.min(ny) < 2 {
                 break;
             }
-            let (gc, p, opc) = coarsen(g, ops.last().unwrap_or(op));
+            let (gc, p, opc) = coarsen(x, g, ops.last().unwrap_or(op));
             grids.push(gc);
             ps.push(p);
             ops.push(opc);

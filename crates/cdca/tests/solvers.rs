@@ -78,7 +78,7 @@ fn solve(
     let committed = vec![FaceState::default(); p.x.faces.len()];
     let mut u = vec![0.0; p.x.n_free()];
     let params = ContactParams {
-        tolerance: 1e-12,
+        tolerance: 1e-11,
         max_iterations: 100,
         ..ContactParams::default()
     };
@@ -167,18 +167,23 @@ fn agrees_with_direct(scene: &Scene, expect_closed: bool) {
     }
 }
 
-/// Open centre crack in tension, 30×30: no face point in contact.
-#[test]
-fn open_centre_crack_every_solver_matches_direct() {
-    agrees_with_direct(&open_scene(30, 0.25, "stress"), false);
+/// Verification mesh: 30×30 in release, 16×16 in debug builds.
+fn verification_size() -> usize {
+    if cfg!(debug_assertions) { 16 } else { 30 }
 }
 
-/// Closed 45° frictional crack under biaxial compression, 30×30: the
+/// Open centre crack in tension (30×30): no face point in contact.
+#[test]
+fn open_centre_crack_every_solver_matches_direct() {
+    agrees_with_direct(&open_scene(verification_size(), 0.25, "stress"), false);
+}
+
+/// Closed 45° frictional crack under biaxial compression (30×30): the
 /// faces close (stick and slip) and every solver, inside the same contact
 /// iteration, reaches the direct solution.
 #[test]
 fn closed_frictional_crack_every_solver_matches_direct() {
-    agrees_with_direct(&closed_scene(30, None), true);
+    agrees_with_direct(&closed_scene(verification_size(), None), true);
 }
 
 /// Iterations to reach ‖r‖ ≤ 1e-8 ‖f‖ from zero on the open-crack scene.
@@ -219,12 +224,21 @@ fn growth_exponent(ns: &[usize], its: &[usize]) -> f64 {
 /// plain relaxation grows like n^2 (classical Gauss–Seidel analysis,
 /// asserted between 1.5 and 2.5); CG with the symmetric sweep in between;
 /// the multigrid-preconditioned CG stays flat (exponent ≤ 0.5).
-/// Meshes 20², 40², 80² (+160² for the accelerated solvers in release).
+/// Meshes 20², 40², 80² (+160² for CG and multigrid) in release; halved
+/// in debug builds.
 #[test]
 fn iteration_growth_with_mesh_size() {
     let release = !cfg!(debug_assertions);
-    let small: &[usize] = &[20, 40, 80];
-    let large: &[usize] = if release { &[20, 40, 80, 160] } else { small };
+    let small: &[usize] = if release {
+        &[20, 40, 80]
+    } else {
+        &[10, 20, 40]
+    };
+    let large: &[usize] = if release {
+        &[20, 40, 80, 160]
+    } else {
+        &[20, 40, 80]
+    };
     println!("solver     n     iterations");
     let mut exps = Vec::new();
     for (kind, ns) in [

@@ -1,29 +1,85 @@
-//! One coarsening step: the coarse grid, the bilinear prolongation and the
-//! Galerkin coarse operator built element by element.
+//! One coarsening step: the coarse grid, the prolongation and the Galerkin
+//! coarse operator built element by element.
+//!
+//! Coarse grids keep the cracks' Heaviside enrichment: a coarse node `I`
+//! carries a Heaviside DOF pair `a_I` for crack `c` when a fine node of its
+//! stencil does. With `w_IJ` the bilinear weights and `H` the side (±1) of
+//! a node, the coarse field `Σ_I N_I [u_I + (H − H_I) a_I]` is prolongated
+//! exactly where all the fine nodes concerned are Heaviside-enriched:
+//!
+//! ```text
+//! u_J = Σ_I w_IJ [u_I + (H_J − H_I) a_I],     a_J = Σ_I w_IJ a_I.
+//! ```
+//!
+//! Tip DOFs get nothing (they are smoothed, and solved in the crack block).
 
 use crate::dofs::FIXED;
 use crate::element_op::ElementOperator;
+use crate::enrichment::Enrichment;
+use crate::geometry::P2;
 use crate::mesh::Mesh;
-use crate::xfem::Xfem;
+use crate::xfem::{REGULAR, Xfem};
 
 /// Grid offsets of the corners of an element, in local corner order.
-const CORNER: [(usize, usize); 4] = [(0, 0), (1, 0), (1, 1), (0, 1)];
+pub const CORNER: [(usize, usize); 4] = [(0, 0), (1, 0), (1, 1), (0, 1)];
 
-/// Geometry and standard DOFs of one level.
+/// What a local DOF of an element is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    Std,
+    Heaviside(usize),
+    Other,
+}
+
+/// A local DOF: corner, component, kind.
+pub type LocalDof = (usize, usize, Kind);
+
+/// Geometry and DOFs of one level.
 #[derive(Clone, Debug)]
 pub struct Grid {
-    /// Topology (node and element numbering); sizes are in `xs`, `ys`.
+    /// Topology (node and element numbering); coordinates in `xs`, `ys`.
     pub topo: Mesh,
     pub xs: Vec<f64>,
     pub ys: Vec<f64>,
-    /// Standard free DOFs `(x, y)` of each node, [`FIXED`] if constrained.
+    /// Standard DOFs `(x, y)` of each node, [`FIXED`] if constrained.
     pub std: Vec<[u32; 2]>,
+    /// Heaviside DOFs of each node, by crack.
+    pub heav: Vec<Vec<(usize, [u32; 2])>>,
+    /// Local DOF layout of each element (`None`: the 8 standard DOFs).
+    pub layout: Vec<Option<Vec<LocalDof>>>,
 }
 
 impl Grid {
     /// The fine grid of a discretisation.
     pub fn fine(x: &Xfem) -> Self {
         let m = &x.mesh;
+        let heav = (0..m.node_count())
+            .map(|n| {
+                let list = x.dofs.node_enr[n].iter().filter_map(|ne| match ne.kind {
+                    Enrichment::Heaviside { crack } => {
+                        Some((crack, [x.dofs.free[ne.first], x.dofs.free[ne.first + 1]]))
+                    }
+                    Enrichment::Tip { .. } => None,
+                });
+                list.collect()
+            })
+            .collect();
+        let layout = (0..m.element_count())
+            .map(|e| {
+                let slot = x.slot[e];
+                (slot != REGULAR).then(|| {
+                    let el = &x.enriched[slot as usize];
+                    let kinds = el.scalars.iter().map(|s| match s.enr {
+                        None => (s.node, Kind::Std),
+                        Some((k, _, _)) => match el.enrs[k] {
+                            Enrichment::Heaviside { crack } => (s.node, Kind::Heaviside(crack)),
+                            Enrichment::Tip { .. } => (s.node, Kind::Other),
+                        },
+                    });
+                    kinds.flat_map(|(q, k)| [(q, 0, k), (q, 1, k)]).collect()
+                })
+            })
+            .collect();
         Self {
             topo: super::topology(m.nx, m.ny),
             xs: (0..=m.nx).map(|i| i as f64 * m.hx).collect(),
@@ -31,15 +87,29 @@ impl Grid {
             std: (0..m.node_count())
                 .map(|n| [x.dofs.std_free(n, 0), x.dofs.std_free(n, 1)])
                 .collect(),
+            heav,
+            layout,
         }
     }
 
-    /// Free DOFs of each node (coarse levels carry standard DOFs only).
+    /// Free DOFs of each node (coarse levels: standard and Heaviside).
     pub fn node_dofs(&self) -> Vec<Vec<u32>> {
         self.std
             .iter()
-            .map(|s| s.iter().copied().filter(|&d| d != FIXED).collect())
+            .zip(&self.heav)
+            .map(|(s, h)| {
+                s.iter()
+                    .chain(h.iter().flat_map(|(_, d)| d))
+                    .copied()
+                    .filter(|&d| d != FIXED)
+                    .collect()
+            })
             .collect()
+    }
+
+    pub fn pos(&self, n: usize) -> P2 {
+        let (i, j) = self.topo.node_ij(n);
+        P2::new(self.xs[i], self.ys[j])
     }
 }
 
@@ -80,8 +150,7 @@ impl Prolongation {
 /// Fine node indices kept on the coarse grid: every other one, plus the
 /// last.
 fn positions(n: usize) -> Vec<usize> {
-    let nc = n.div_ceil(2);
-    (0..=nc).map(|i| (2 * i).min(n)).collect()
+    (0..=n.div_ceil(2)).map(|i| (2 * i).min(n)).collect()
 }
 
 /// Coarse interval of fine node `i` and its local coordinate `t ∈ [0, 1]`.
@@ -91,48 +160,104 @@ fn locate(i: usize, fine: &[f64], coarse: &[f64]) -> (usize, f64) {
 }
 
 /// Linear weight of coarse end `side` (0 left, 1 right) at local `t`.
-fn hat(side: usize, t: f64) -> f64 {
+pub fn hat(side: usize, t: f64) -> f64 {
     if side == 0 { 1.0 - t } else { t }
+}
+
+/// Coarse element containing fine node `(i, j)` and the node's bilinear
+/// weights for that element's corners.
+fn stencil(g: &Grid, c: &Grid, i: usize, j: usize) -> (usize, [f64; 4]) {
+    let (ki, tx) = locate(i, &g.xs, &c.xs);
+    let (kj, ty) = locate(j, &g.ys, &c.ys);
+    (
+        kj * c.topo.nx + ki,
+        CORNER.map(|(a, b)| hat(a, tx) * hat(b, ty)),
+    )
 }
 
 /// Coarsens `g` (with operator `op`): the coarse grid, the prolongation
 /// into `g` and the Galerkin operator `Pᵀ K P`.
-pub fn coarsen(g: &Grid, op: &ElementOperator) -> (Grid, Prolongation, ElementOperator) {
-    let (nx, ny) = (g.topo.nx, g.topo.ny);
-    let (px, py) = (positions(nx), positions(ny));
-    let (ncx, ncy) = (px.len() - 1, py.len() - 1);
-    let xs: Vec<f64> = px.iter().map(|&i| g.xs[i]).collect();
-    let ys: Vec<f64> = py.iter().map(|&j| g.ys[j]).collect();
-    let topo = super::topology(ncx, ncy);
-    let mut next = 0u32;
-    let mut std = Vec::with_capacity(topo.node_count());
-    for &j in &py {
-        for &i in &px {
-            let s = g.std[g.topo.node_id(i, j)];
-            std.push(s.map(|d| {
-                if d == FIXED {
-                    FIXED
-                } else {
-                    next += 1;
-                    next - 1
+pub fn coarsen(x: &Xfem, g: &Grid, op: &ElementOperator) -> (Grid, Prolongation, ElementOperator) {
+    let (px, py) = (positions(g.topo.nx), positions(g.topo.ny));
+    let topo = super::topology(px.len() - 1, py.len() - 1);
+    let mut c = Grid {
+        xs: px.iter().map(|&i| g.xs[i]).collect(),
+        ys: py.iter().map(|&j| g.ys[j]).collect(),
+        std: Vec::with_capacity(topo.node_count()),
+        heav: vec![Vec::new(); topo.node_count()],
+        layout: Vec::new(),
+        topo,
+    };
+    // which coarse nodes carry a Heaviside enrichment
+    let mut cracks: Vec<Vec<usize>> = vec![Vec::new(); c.topo.node_count()];
+    for n in 0..g.topo.node_count() {
+        let (i, j) = g.topo.node_ij(n);
+        let (ce, w) = stencil(g, &c, i, j);
+        for (q, &nc) in c.topo.element_nodes(ce).iter().enumerate() {
+            for &(crack, _) in &g.heav[n] {
+                if w[q] != 0.0 && !cracks[nc].contains(&crack) {
+                    cracks[nc].push(crack);
                 }
-            }));
+            }
         }
     }
-    let coarse = Grid { topo, xs, ys, std };
+    let mut next = 0u32;
+    let mut number = || {
+        next += 1;
+        next - 1
+    };
+    for (nc, list) in cracks.iter_mut().enumerate() {
+        let (ic, jc) = c.topo.node_ij(nc);
+        let s = g.std[g.topo.node_id(px[ic], py[jc])];
+        c.std
+            .push(s.map(|d| if d == FIXED { FIXED } else { number() }));
+        list.sort_unstable();
+        c.heav[nc] = list.iter().map(|&k| (k, [number(), number()])).collect();
+    }
+    c.layout = (0..c.topo.element_count())
+        .map(|ce| {
+            let nodes = c.topo.element_nodes(ce);
+            let enriched = nodes.iter().any(|&n| !c.heav[n].is_empty());
+            enriched.then(|| {
+                let mut l: Vec<LocalDof> = (0..8).map(|k| (k / 2, k % 2, Kind::Std)).collect();
+                for (q, &n) in nodes.iter().enumerate() {
+                    l.extend(c.heav[n].iter().flat_map(|&(k, _)| {
+                        [(q, 0, Kind::Heaviside(k)), (q, 1, Kind::Heaviside(k))]
+                    }));
+                }
+                l
+            })
+        })
+        .collect();
+    let side = |grid: &Grid, n: usize, crack: usize| x.funcs.heaviside(crack, grid.pos(n));
     // prolongation rows, by fine DOF
     let mut rows: Vec<Vec<(u32, f64)>> = vec![Vec::new(); op.n];
-    for j in 0..=ny {
-        let (kj, ty) = locate(j, &g.ys, &coarse.ys);
-        for i in 0..=nx {
-            let (ki, tx) = locate(i, &g.xs, &coarse.xs);
-            let fine = g.std[g.topo.node_id(i, j)];
-            for &(a, b) in &CORNER {
-                let w = hat(a, tx) * hat(b, ty);
-                let cs = coarse.std[coarse.topo.node_id(ki + a, kj + b)];
-                for c in 0..2 {
-                    if w != 0.0 && fine[c] != FIXED && cs[c] != FIXED {
-                        rows[fine[c] as usize].push((cs[c], w));
+    for n in 0..g.topo.node_count() {
+        let (i, j) = g.topo.node_ij(n);
+        let (ce, w) = stencil(g, &c, i, j);
+        for (q, &nc) in c.topo.element_nodes(ce).iter().enumerate() {
+            if w[q] == 0.0 {
+                continue;
+            }
+            for comp in 0..2 {
+                let fine = g.std[n][comp];
+                if fine == FIXED {
+                    continue;
+                }
+                if c.std[nc][comp] != FIXED {
+                    rows[fine as usize].push((c.std[nc][comp], w[q]));
+                }
+                for &(crack, d) in &c.heav[nc] {
+                    let jump = side(g, n, crack) - side(&c, nc, crack);
+                    if jump != 0.0 {
+                        rows[fine as usize].push((d[comp], w[q] * jump));
+                    }
+                }
+            }
+            for &(crack, fd) in &g.heav[n] {
+                if let Some((_, d)) = c.heav[nc].iter().find(|(k, _)| *k == crack) {
+                    for comp in 0..2 {
+                        rows[fd[comp] as usize].push((d[comp], w[q]));
                     }
                 }
             }
@@ -144,98 +269,12 @@ pub fn coarsen(g: &Grid, op: &ElementOperator) -> (Grid, Prolongation, ElementOp
         val: Vec::new(),
     };
     for row in rows {
-        for (c, w) in row {
-            p.col.push(c);
+        for (col, w) in row {
+            p.col.push(col);
             p.val.push(w);
         }
         p.start.push(p.col.len());
     }
-    let opc = galerkin(g, &coarse, &px, &py, op, next as usize);
-    (coarse, p, opc)
-}
-
-/// `K_E = Σ_{e⊂E} P_eᵀ K_e P_e` for every coarse element `E`.
-fn galerkin(
-    g: &Grid,
-    c: &Grid,
-    px: &[usize],
-    py: &[usize],
-    op: &ElementOperator,
-    n: usize,
-) -> ElementOperator {
-    let mut opc = ElementOperator::new(n);
-    // the shared matrix: four ordinary children of standard size
-    let mut shared = [0.0; 64];
-    for (a, b) in CORNER {
-        let tx = [0, 1, 1, 0].map(|o| (a + o) as f64 / 2.0);
-        let ty = [0, 0, 1, 1].map(|o| (b + o) as f64 / 2.0);
-        add_child(&mut shared, op.matrix(0), 8, [false; 8], tx, ty);
-    }
-    opc.push_matrix(&shared);
-    let (hx, hy) = (g.xs[1] - g.xs[0], g.ys[1] - g.ys[0]);
-    let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b;
-    for cj in 0..c.topo.ny {
-        for ci in 0..c.topo.nx {
-            let ce = cj * c.topo.nx + ci;
-            let dofs: [u32; 8] =
-                std::array::from_fn(|k| c.std[c.topo.element_nodes(ce)[k / 2]][k % 2]);
-            let (i0, i1, j0, j1) = (px[ci], px[ci + 1], py[cj], py[cj + 1]);
-            let mut standard = i1 - i0 == 2 && j1 - j0 == 2;
-            let mut k = [0.0; 64];
-            for j in j0..j1 {
-                for i in i0..i1 {
-                    let e = j * g.topo.nx + i;
-                    let ed = op.element_dofs(e);
-                    let fixed: [bool; 8] = std::array::from_fn(|a| ed[a] == FIXED);
-                    standard &= op.element_matrix_id(e) == 0
-                        && !fixed.iter().any(|&f| f)
-                        && same(g.xs[i + 1] - g.xs[i], hx)
-                        && same(g.ys[j + 1] - g.ys[j], hy);
-                    let t = |f: &[f64], lo: f64, hi: f64, v: usize| (f[v] - lo) / (hi - lo);
-                    let tx = CORNER.map(|(a, _)| t(&g.xs, c.xs[ci], c.xs[ci + 1], i + a));
-                    let ty = CORNER.map(|(_, b)| t(&g.ys, c.ys[cj], c.ys[cj + 1], j + b));
-                    add_child(&mut k, op.element_matrix(e), ed.len(), fixed, tx, ty);
-                }
-            }
-            let id = if standard { 0 } else { opc.push_matrix(&k) };
-            opc.push_element(&dofs, id);
-        }
-    }
-    opc
-}
-
-/// Adds `P_eᵀ K_e P_e` of one child to the coarse element matrix `kc`.
-/// `tx[q]`, `ty[q]`: local coordinates of the child's corner `q` in the
-/// coarse element; `k` is the child's `nd × nd` matrix, of which the
-/// standard block (first 8 DOFs) is used.
-fn add_child(
-    kc: &mut [f64; 64],
-    k: &[f64],
-    nd: usize,
-    fixed: [bool; 8],
-    tx: [f64; 4],
-    ty: [f64; 4],
-) {
-    let mut pe = [[0.0; 8]; 8];
-    for q in 0..4 {
-        for (cq, &(a, b)) in CORNER.iter().enumerate() {
-            let w = hat(a, tx[q]) * hat(b, ty[q]);
-            for comp in 0..2 {
-                if !fixed[2 * q + comp] {
-                    pe[2 * q + comp][2 * cq + comp] = w;
-                }
-            }
-        }
-    }
-    let mut kp = [[0.0; 8]; 8];
-    for (a, row) in kp.iter_mut().enumerate() {
-        for (b, v) in row.iter_mut().enumerate() {
-            *v = (0..8).map(|c| k[a * nd + c] * pe[c][b]).sum();
-        }
-    }
-    for b1 in 0..8 {
-        for b2 in 0..8 {
-            kc[b1 * 8 + b2] += (0..8).map(|a| pe[a][b1] * kp[a][b2]).sum::<f64>();
-        }
-    }
+    let opc = super::galerkin::galerkin(x, g, &c, &px, &py, op, next as usize);
+    (c, p, opc)
 }

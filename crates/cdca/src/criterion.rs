@@ -14,8 +14,17 @@ use crate::report::{CriterionReport, Mode};
 use crate::scene::{CriterionKind, Material};
 use crate::sif::Sifs;
 
-/// Number of samples on the circle (one every degree from −179° to 179°).
-const SAMPLES: usize = 359;
+/// Largest kink angle searched, degrees. Beyond ±90° a crack would grow
+/// backwards, into its own faces; the circle there lies on the flaw.
+pub const MAX_KINK_DEG: f64 = 90.0;
+
+/// Number of samples on the circle (one every half degree, ±MAX_KINK_DEG).
+const SAMPLES: usize = 361;
+
+/// Angle of sample `i`, rad.
+fn sample_angle(i: usize) -> f64 {
+    (-MAX_KINK_DEG + 2.0 * MAX_KINK_DEG * i as f64 / (SAMPLES - 1) as f64).to_radians()
+}
 
 /// σ_θθ and τ_rθ sampled on the circle r0 around a tip.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -59,7 +68,7 @@ impl CriterionParams {
 pub fn sample_field(frame: &TipFrame, r0: f64, stress: &dyn Fn(P2) -> Option<[f64; 3]>) -> Circle {
     let mut c = Circle::default();
     for i in 0..SAMPLES {
-        let th = (-179.0 + i as f64).to_radians();
+        let th = sample_angle(i);
         let er = frame.global(P2::new(th.cos(), th.sin()));
         let et = frame.global(P2::new(-th.sin(), th.cos()));
         let Some(s) = stress(frame.origin + r0 * er) else { continue };
@@ -76,7 +85,7 @@ pub fn sample_williams(s: &Sifs, r0: f64) -> Circle {
     let mut c = Circle::default();
     let a = 1.0 / (2.0 * PI * r0).sqrt();
     for i in 0..SAMPLES {
-        let th = (-179.0 + i as f64).to_radians();
+        let th = sample_angle(i);
         let hc = (0.5 * th).cos();
         let (st, ct) = th.sin_cos();
         c.theta.push(th);
@@ -86,18 +95,40 @@ pub fn sample_williams(s: &Sifs, r0: f64) -> Circle {
     c
 }
 
-/// Index of the largest value and its angle refined by a parabola through
-/// the neighbouring samples.
+/// Half width of the window fitted around a maximum, rad.
+const FIT_WINDOW_DEG: f64 = 10.0;
+
+/// Angle and value of the largest sample, refined by a least-squares
+/// parabola over the samples within ±10° of it: robust to flat or slightly
+/// split peaks of a sampled (discretised) field. Falls back to the sample
+/// when the fit has no interior maximum.
 fn argmax(theta: &[f64], v: &[f64]) -> Option<(f64, f64)> {
     let i = (0..v.len()).max_by(|&a, &b| v[a].total_cmp(&v[b]))?;
-    if i == 0 || i + 1 == v.len() {
-        return Some((theta[i], v[i]));
+    let w = FIT_WINDOW_DEG.to_radians();
+    let t0 = theta[i];
+    // normal equations of v ≈ a + b x + c x² with x = θ − θ_i
+    let mut m = nalgebra::Matrix3::<f64>::zeros();
+    let mut r = nalgebra::Vector3::<f64>::zeros();
+    for (t, y) in theta.iter().zip(v) {
+        let x = t - t0;
+        if x.abs() > w {
+            continue;
+        }
+        let p = nalgebra::Vector3::new(1.0, x, x * x);
+        m += p * p.transpose();
+        r += p * *y;
     }
-    let (a, b, c) = (v[i - 1], v[i], v[i + 1]);
-    let den = a - 2.0 * b + c;
-    let shift = if den.abs() > 0.0 { (0.5 * (a - c) / den).clamp(-0.5, 0.5) } else { 0.0 };
-    let step = theta[i + 1] - theta[i];
-    Some((theta[i] + shift * step, b - 0.25 * (a - c) * shift))
+    let Some(c) = m.lu().solve(&r) else {
+        return Some((t0, v[i]));
+    };
+    if c[2] >= 0.0 {
+        return Some((t0, v[i]));
+    }
+    let x = -c[1] / (2.0 * c[2]);
+    if x.abs() > w || t0 + x < theta[0] || t0 + x > theta[theta.len() - 1] {
+        return Some((t0, v[i]));
+    }
+    Some((t0 + x, v[i].max(c[0] + c[1] * x + c[2] * x * x)))
 }
 
 /// Decision of the chosen criterion at one tip.

@@ -56,4 +56,28 @@ impl Field<'_> {
     pub fn stress_at(&self, x: P2) -> Option<[f64; 3]> {
         self.at(x).map(|v| self.stress(&v))
     }
+
+    /// Stress at `x` averaged over every element whose closed box holds it:
+    /// on an element edge or corner the (discontinuous) stresses of the
+    /// elements meeting there are averaged, so that sampling does not depend
+    /// on how a tie is broken.
+    pub fn stress_averaged_at(&self, x: P2) -> Option<[f64; 3]> {
+        let m = &self.xfem.mesh;
+        self.xfem.mesh.element_at(x)?;
+        let tol = 1e-9 * m.h();
+        let mut sum = [0.0; 3];
+        let mut n = 0.0;
+        for e in m.elements_in_box(x, x, tol) {
+            let (lo, hi) = m.element_box(e);
+            if x.x < lo.x - tol || x.x > hi.x + tol || x.y < lo.y - tol || x.y > hi.y + tol {
+                continue;
+            }
+            let s = self.stress(&self.in_element(e, x));
+            for k in 0..3 {
+                sum[k] += s[k];
+            }
+            n += 1.0;
+        }
+        (n > 0.0).then(|| sum.map(|v| v / n))
+    }
 }

@@ -40,6 +40,8 @@ pub fn split_by_lines(poly: &[P2], lines: &[(P2, P2)], eps: f64, min_area: f64) 
 
 /// Depth of the refinement of triangles near (not at) a tip.
 const NEAR_TIP_DEPTH: usize = 8;
+/// Collapsed order on the sub-triangles of that refinement.
+const ORDER_REFINED: usize = 6;
 
 /// Quadrature of one element given its pieces.
 ///
@@ -97,8 +99,11 @@ fn refined_rule(t: [P2; 3], tip: P2, depth: usize, order: usize, out: &mut Vec<Q
         return;
     }
     let m = [0.5 * (t[0] + t[1]), 0.5 * (t[1] + t[2]), 0.5 * (t[2] + t[0])];
+    // sub-triangles are smaller relative to their distance to the tip: a
+    // lower order suffices on them
+    let sub_order = order.min(ORDER_REFINED);
     for sub in [[t[0], m[0], m[2]], [m[0], t[1], m[1]], [m[2], m[1], t[2]], [m[0], m[1], m[2]]] {
-        refined_rule(sub, tip, depth - 1, order, out);
+        refined_rule(sub, tip, depth - 1, sub_order, out);
     }
 }
 

@@ -32,7 +32,7 @@ pub fn evaluate_tips(
             let frame = TipFrame::of(crack, k);
             let s = tip_sifs(&field, c, &frame, r_j, &tractions);
             let circle = match sampling {
-                Sampling::Field => sample_field(&frame, params.r0, &|p| field.stress_at(p)),
+                Sampling::Field => sample_field(&frame, params.r0, &|p| field.stress_averaged_at(p)),
                 Sampling::Williams => sample_williams(&s, params.r0),
             };
             let criterion = decide(params, &circle, &s);

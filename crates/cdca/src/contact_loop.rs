@@ -20,6 +20,13 @@ pub struct ContactParams {
     pub max_flips: u32,
 }
 
+impl ContactParams {
+    /// Contact iterations allowed (at least one).
+    pub fn max_contact_iterations(&self) -> usize {
+        self.max_iterations.max(1)
+    }
+}
+
 impl Default for ContactParams {
     fn default() -> Self {
         Self {
@@ -57,8 +64,7 @@ pub fn solve_with_contact(
 ) -> Result<(Vec<FaceState>, ContactInfo), SolveError> {
     let n = x.faces.len();
     let mut states: Vec<FaceState> = committed.to_vec();
-    let mut flips = vec![0u32; n];
-    let mut frozen = vec![false; n];
+    let mut tracker = FlipTracker::new(n);
     let mut info = ContactInfo::default();
     let mut kinds: Vec<ContactState> = Vec::new();
     for it in 1..=params.max_iterations.max(1) {
@@ -71,25 +77,7 @@ pub fn solve_with_contact(
         let lin = solver.solve(x, &blocks, &f, u, matrix_changed)?;
         info.linear_iterations += lin.iterations;
         info.last = lin;
-        let mut changed = 0;
-        for i in 0..n {
-            let fp = &x.faces[i];
-            let crack = &x.funcs.cracks[fp.crack];
-            let (gn, gt) = gaps(x, fp, u);
-            let new = update_point(crack, committed[i].slip, gn, gt);
-            if frozen[i] {
-                states[i] = forced(states[i].state, crack, committed[i].slip, gn, gt);
-                continue;
-            }
-            if new.state != states[i].state {
-                changed += 1;
-                flips[i] += 1;
-                if flips[i] > params.max_flips {
-                    frozen[i] = true;
-                }
-            }
-            states[i] = new;
-        }
+        let changed = update_states(x, u, committed, &mut states, &mut tracker, params);
         let du: f64 = u.iter().zip(&before).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
         let nu: f64 = u.iter().map(|a| a * a).sum::<f64>().sqrt();
         info.iterations = it;
@@ -106,11 +94,66 @@ pub fn solve_with_contact(
             break;
         }
     }
-    info.cycling = frozen.iter().filter(|&&f| f).count();
+    info.cycling = tracker.frozen();
     Ok((states, info))
 }
 
-fn any_slip(states: &[FaceState]) -> bool {
+/// Per point: how often it changed state, and whether it is frozen.
+#[derive(Clone, Debug, Default)]
+pub struct FlipTracker {
+    flips: Vec<u32>,
+    frozen: Vec<bool>,
+}
+
+impl FlipTracker {
+    pub fn new(n: usize) -> Self {
+        Self {
+            flips: vec![0; n],
+            frozen: vec![false; n],
+        }
+    }
+
+    /// Number of frozen (cycling) points.
+    pub fn frozen(&self) -> usize {
+        self.frozen.iter().filter(|&&f| f).count()
+    }
+}
+
+/// Updates every face point's state from the displacement `u` by the
+/// return mapping; returns how many points changed state. Points that
+/// changed more than `max_flips` times are frozen in their latest state.
+pub fn update_states(
+    x: &Xfem,
+    u: &[f64],
+    committed: &[FaceState],
+    states: &mut [FaceState],
+    tracker: &mut FlipTracker,
+    params: ContactParams,
+) -> usize {
+    let mut changed = 0;
+    for i in 0..states.len() {
+        let fp = &x.faces[i];
+        let crack = &x.funcs.cracks[fp.crack];
+        let (gn, gt) = gaps(x, fp, u);
+        if tracker.frozen[i] {
+            states[i] = forced(states[i].state, crack, committed[i].slip, gn, gt);
+            continue;
+        }
+        let new = update_point(crack, committed[i].slip, gn, gt);
+        if new.state != states[i].state {
+            changed += 1;
+            tracker.flips[i] += 1;
+            if tracker.flips[i] > params.max_flips {
+                tracker.frozen[i] = true;
+            }
+        }
+        states[i] = new;
+    }
+    changed
+}
+
+/// Whether any point slips (its friction force then follows the iterate).
+pub fn any_slip(states: &[FaceState]) -> bool {
     states.iter().any(|s| s.state == ContactState::Slip)
 }
 

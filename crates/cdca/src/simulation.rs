@@ -3,8 +3,12 @@
 
 use web_time::Instant;
 
-use crate::contact::{FaceState, carry_over, counts};
-use crate::contact_loop::{ContactInfo, ContactParams, solve_with_contact};
+use crate::assembly::ElementBlock;
+use crate::contact::{FaceState, carry_over, contact_system, counts};
+use crate::contact_loop::{
+    ContactInfo, ContactParams, FlipTracker, any_slip, solve_with_contact, update_states,
+};
+use crate::relaxation::Relaxation;
 use crate::cracks::{Crack, TipKind, classify_tips};
 use crate::criterion::{Circle, CriterionParams};
 use crate::error::SolveError;
@@ -61,6 +65,13 @@ pub struct CriterionCurve {
     pub r0: f64,
 }
 
+/// `‖a − b‖ / ‖a‖` (or `‖a − b‖` when a = 0).
+fn relative_change(a: &[f64], b: &[f64]) -> f64 {
+    let d: f64 = a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>().sqrt();
+    let n: f64 = a.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if n > 0.0 { d / n } else { d }
+}
+
 /// One sample of an iterative solve's progress.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ResidualSample {
@@ -115,6 +126,28 @@ struct Scratch {
     circles: Vec<Circle>,
     contact: ContactInfo,
     residual: Vec<ResidualSample>,
+    /// The resumable solve in progress, if any.
+    job: Option<RelaxJob>,
+}
+
+/// A resumable solve with contact: the linear relaxation of the current
+/// contact system, and the contact iteration around it.
+struct RelaxJob {
+    relaxation: Relaxation,
+    blocks: Vec<ElementBlock>,
+    /// Contact states of the current contact iteration.
+    states: Vec<FaceState>,
+    tracker: FlipTracker,
+    contact_iterations: usize,
+    /// Iterations and seconds of earlier contact iterations (for the
+    /// cumulative residual history).
+    done_iterations: usize,
+    done_seconds: f64,
+    /// Displacement at the start of this contact iteration.
+    start_u: Vec<f64>,
+    /// Samples of `relaxation.history()` already copied to the cumulative
+    /// history.
+    copied: usize,
 }
 
 impl Simulation {
@@ -136,6 +169,7 @@ impl Simulation {
                 circles: Vec::new(),
                 contact: ContactInfo::default(),
                 residual: Vec::new(),
+                job: None,
             },
             state: State {
                 scene,
@@ -177,6 +211,7 @@ impl Simulation {
         if lambda.is_finite() {
             self.state.lambda = lambda.clamp(0.0, 1.0);
             self.state.solved = false;
+            self.scratch.job = None;
         }
     }
 
@@ -198,6 +233,7 @@ impl Simulation {
     /// Full solve (with contact) at the current load factor with the scene's
     /// solver; fills SIFs and criterion at every free tip.
     pub fn solve(&mut self) -> Result<SolveReport, SolveError> {
+        self.scratch.job = None;
         let start = Instant::now();
         let f: Vec<f64> = self.scratch.f_ext.iter().map(|v| v * self.state.lambda).collect();
         let params = self.contact_params();
@@ -278,22 +314,109 @@ impl Simulation {
         }
     }
 
-    /// Starts (or restarts) a resumable iterative solve from the current
-    /// displacement. For the direct solver this does the whole solve at the
-    /// first `relax` call.
+    /// Starts (or restarts) a resumable solve from the current displacement
+    /// with the scene's solver. The setup (cells, factorisations) happens at
+    /// the first [`relax`](Self::relax) call, which reports its errors.
     pub fn start_relaxation(&mut self) {
-        self.state.solved = false;
         self.scratch.residual.clear();
+        self.scratch.job = None;
     }
 
-    /// Runs at most `max_iterations` sweeps of the relaxation started by
-    /// `start_relaxation`; cheap to call once per frame.
-    pub fn relax(&mut self, _max_iterations: usize) -> Result<RelaxStatus, SolveError> {
-        let r = self.solve()?;
+    fn new_job(
+        &self,
+        states: Vec<FaceState>,
+        tracker: FlipTracker,
+        contact_iterations: usize,
+        done_iterations: usize,
+        done_seconds: f64,
+    ) -> Result<RelaxJob, SolveError> {
+        let x = &self.scratch.xfem;
+        let mut f: Vec<f64> = self.scratch.f_ext.iter().map(|v| v * self.state.lambda).collect();
+        let blocks = contact_system(x, &states, &self.state.faces, &mut f);
+        let spec = &self.model.scene.solver;
+        let relaxation = Relaxation::new(spec.kind, spec, x, &blocks, &f, &self.state.u)?;
+        Ok(RelaxJob {
+            relaxation,
+            blocks,
+            states,
+            tracker,
+            contact_iterations,
+            done_iterations,
+            done_seconds,
+            start_u: self.state.u.clone(),
+            // later contact iterations do not repeat the iteration-0 sample
+            copied: usize::from(done_iterations > 0),
+        })
+    }
+
+    /// Runs at most `max_iterations` sweeps (or iterations) of the solve
+    /// started by [`start_relaxation`](Self::start_relaxation) (started now
+    /// if none is under way); cheap enough to call once per frame. When the
+    /// linear solve converges, the contact states are updated and, if any
+    /// changed, the relaxation continues on the new contact system; once
+    /// nothing changes the tips are evaluated and the status is converged.
+    pub fn relax(&mut self, max_iterations: usize) -> Result<RelaxStatus, SolveError> {
+        if self.scratch.job.is_none() {
+            self.scratch.residual.clear();
+            let fresh = FlipTracker::new(self.state.faces.len());
+            self.scratch.job = Some(self.new_job(self.state.faces.clone(), fresh, 0, 0, 0.0)?);
+        }
+        let Some(mut job) = self.scratch.job.take() else {
+            unreachable!("a job was just started")
+        };
+        let status = job.relaxation.run(&self.scratch.xfem, &job.blocks, max_iterations, &mut |_| {})?;
+        let offset = (job.done_iterations, job.done_seconds);
+        let history = job.relaxation.history();
+        self.scratch.residual.extend(history[job.copied.min(history.len())..].iter().map(|s| ResidualSample {
+            iteration: s.iteration + offset.0,
+            seconds: s.seconds + offset.1,
+            residual: s.residual,
+        }));
+        job.copied = history.len();
+        self.state.u.copy_from_slice(job.relaxation.u());
+        if !status.converged {
+            let total = offset.0 + status.iterations;
+            self.scratch.job = Some(job);
+            return Ok(RelaxStatus { iterations: total, ..status });
+        }
+        // the linear solve converged: the contact iteration
+        let params = self.contact_params();
+        let committed = self.state.faces.clone();
+        let changed = update_states(&self.scratch.xfem, &self.state.u, &committed, &mut job.states, &mut job.tracker, params);
+        let du = relative_change(&self.state.u, &job.start_u);
+        let iterations = offset.0 + status.iterations;
+        let contact_iterations = job.contact_iterations + 1;
+        let settled = changed == 0 && (!any_slip(&job.states) || du <= params.tolerance);
+        if settled || contact_iterations >= params.max_contact_iterations() {
+            self.state.faces = job.states;
+            self.scratch.contact = ContactInfo {
+                iterations: contact_iterations,
+                converged: settled,
+                residual: du,
+                cycling: job.tracker.frozen(),
+                linear_iterations: iterations,
+                last: crate::solver::LinearInfo {
+                    iterations: status.iterations,
+                    residual: status.residual,
+                    converged: true,
+                    history: job.relaxation.history().iter().map(|s| s.residual).collect(),
+                },
+            };
+            self.state.solved = true;
+            self.evaluate();
+            return Ok(RelaxStatus {
+                iterations,
+                residual: status.residual,
+                converged: true,
+            });
+        }
+        let seconds = offset.1 + job.relaxation.seconds();
+        let next = self.new_job(job.states, job.tracker, contact_iterations, iterations, seconds)?;
+        self.scratch.job = Some(next);
         Ok(RelaxStatus {
-            iterations: r.solver.iterations,
-            residual: r.solver.residual,
-            converged: r.solver.converged && r.contact.converged,
+            iterations,
+            residual: status.residual,
+            converged: false,
         })
     }
 
@@ -411,6 +534,7 @@ impl Simulation {
         }
         self.scratch.f_ext = crate::loads::traction_forces(&new, &self.model.scene.boundary);
         self.scratch.xfem = new;
+        self.scratch.job = None;
         self.scratch.solver = crate::solvers::make_solver(&self.model.scene.solver);
         self.state.faces = faces;
         self.state.u = u;

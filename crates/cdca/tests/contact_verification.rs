@@ -223,3 +223,32 @@ fn threshold_case_terminates() {
     assert!(states.iter().all(|s| *s != ContactState::Open));
 }
 
+
+/// The resumable relaxation (as the workbench drives it, a few sweeps per
+/// frame) ends at the same contact state and K as the one-call solve, for
+/// the automaton (to its tolerance, 1e-6 relative in K) and the direct
+/// solver (1e-9).
+#[test]
+fn resumable_relaxation_matches_the_one_call_solve() {
+    for (kind, tol) in [(cdca::scene::SolverKind::Direct, 1e-9), (cdca::scene::SolverKind::Multigrid, 1e-6)] {
+        let mut s = biaxial_on(40, 0.1, 0.2, 0.0, None, 10e6);
+        s.solver.kind = kind;
+        let reference = solve(s.clone());
+        let mut sim = Simulation::new(s).expect("valid");
+        sim.start_relaxation();
+        let mut calls = 0;
+        loop {
+            calls += 1;
+            let st = sim.relax(5).expect("relax");
+            assert!(calls < 10_000, "{kind:?} never converged");
+            if st.converged {
+                break;
+            }
+        }
+        let history = sim.residual_history();
+        assert!(history.len() >= 2 && history.windows(2).all(|w| w[1].iteration > w[0].iteration));
+        for (a, b) in sim.tips().iter().zip(&reference.tips) {
+            assert!(rel(a.k2, b.k2) < tol && (a.k1 - b.k1).abs() < tol * b.k2.abs(), "{kind:?}: {a:?} vs {b:?}");
+        }
+    }
+}

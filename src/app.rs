@@ -152,6 +152,19 @@ impl WorkbenchApp {
     pub fn simulated_cracks(&self) -> &[Vec<[f64; 2]>] {
         &self.runner.view.cracks
     }
+    /// Free tips after the last solve: (x, y) in m.
+    pub fn tip_positions(&self) -> Vec<[f64; 2]> {
+        self.runner.view.tips.iter().map(|t| [t.x, t.y]).collect()
+    }
+    /// The inspected tip and whether its σ_θθ / τ_rθ curve is available.
+    pub fn inspected_tip(&self) -> Option<(usize, bool)> {
+        let tip = self.selected_tip?;
+        let has_curve = self
+            .tip_curve
+            .as_ref()
+            .is_some_and(|c| c.tip == tip && c.curve.is_some());
+        Some((tip, has_curve))
+    }
     pub fn growth_steps(&self) -> usize {
         self.runner.view.history.len()
     }

@@ -126,7 +126,7 @@ impl WorkbenchApp {
             Err(e) => {
                 self.message = Some(Message::Error(format!(
                     "The scene cannot be simulated: {e}"
-                )))
+                )));
             }
         }
     }

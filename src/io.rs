@@ -1,6 +1,12 @@
 //! Everything that touches the file system or native dialogs, so the web
-//! build has one module to replace. On the web these report that the action
-//! is not available yet (a later task wires `rfd::AsyncFileDialog`).
+//! build has one module to replace.
+//!
+//! In the browser, files are read asynchronously: [`open_scene_dialog`]
+//! starts an `rfd::AsyncFileDialog` and returns `Ok(None)`, and
+//! [`read_dropped_later`] starts reading a dropped file. Their results
+//! queue up here until the app takes them with [`take_opened`] (the web
+//! wrapper in `web.rs` does so every frame). Saving is a download of a
+//! `Blob` through a temporary `<a download>` link, which is synchronous.
 
 /// A file the user picked: its name (for messages) and its text.
 pub struct OpenedFile {
@@ -71,28 +77,147 @@ pub fn save_dialog(
 }
 
 #[cfg(target_arch = "wasm32")]
+pub use web::{read_dropped_later, set_repaint_context, take_opened};
+
+/// Starts the browser's file picker; the file arrives through
+/// [`take_opened`] a few frames later. Always `Ok(None)` now.
+#[cfg(target_arch = "wasm32")]
+#[expect(clippy::unnecessary_wraps, reason = "same signature as natively")]
 pub fn open_scene_dialog() -> Result<Option<OpenedFile>, String> {
-    Err(
-        "opening files is not available in the browser yet; drop a scene file on the window"
-            .to_owned(),
-    )
+    wasm_bindgen_futures::spawn_local(async {
+        let picked = rfd::AsyncFileDialog::new()
+            .set_title("Open scene")
+            .add_filter("Scene (JSON)", &["json"])
+            .pick_file()
+            .await;
+        if let Some(file) = picked {
+            let bytes = file.read().await;
+            web::finish(Ok(OpenedFile {
+                name: file.file_name(),
+                text: String::from_utf8_lossy(&bytes).into_owned(),
+            }));
+        }
+    });
+    Ok(None)
 }
 
+/// There is no file system in the browser.
 #[cfg(target_arch = "wasm32")]
-pub fn read_text(_path: &std::path::Path) -> Result<OpenedFile, String> {
-    Err("no file system in the browser".to_owned())
+pub fn read_text(path: &std::path::Path) -> Result<OpenedFile, String> {
+    Err(format!(
+        "cannot read {}: no file system in the browser",
+        path.display()
+    ))
 }
 
+/// Dropped files can only be read asynchronously in the browser: the web
+/// wrapper takes them out of the input before the app sees them and calls
+/// [`read_dropped_later`]. Reaching this is a bug, reported as an error.
 #[cfg(target_arch = "wasm32")]
-pub fn read_dropped(_file: &egui::DroppedFileHandle) -> Result<OpenedFile, String> {
-    Err("reading dropped files is not available in the browser yet".to_owned())
+pub fn read_dropped(file: &egui::DroppedFileHandle) -> Result<OpenedFile, String> {
+    Err(format!(
+        "cannot read {} synchronously in the browser",
+        file.path().display()
+    ))
 }
 
+/// Offers `bytes` as a download named `default_name` (the browser decides
+/// where it goes); returns that name.
 #[cfg(target_arch = "wasm32")]
 pub fn save_dialog(
-    _default_name: &str,
-    _filter: (&str, &str),
-    _bytes: &[u8],
+    default_name: &str,
+    filter: (&str, &str),
+    bytes: &[u8],
 ) -> Result<Option<String>, String> {
-    Err("saving files is not available in the browser yet".to_owned())
+    web::download(default_name, mime_type(filter.1), bytes)
+        .map_err(|e| format!("cannot download {default_name}: {e}"))?;
+    Ok(Some(format!("{default_name} (downloaded)")))
+}
+
+/// The MIME type for a file extension the app exports.
+#[cfg(target_arch = "wasm32")]
+fn mime_type(extension: &str) -> &'static str {
+    match extension {
+        "json" => "application/json",
+        "csv" => "text/csv",
+        "png" => "image/png",
+        "vtu" => "application/xml",
+        _ => "application/octet-stream",
+    }
+}
+
+/// The browser half: the queue of files read asynchronously, and downloads.
+#[cfg(target_arch = "wasm32")]
+mod web {
+    use std::cell::RefCell;
+
+    use wasm_bindgen::{JsCast as _, JsValue};
+
+    use super::OpenedFile;
+
+    thread_local! {
+        /// Files read (or failed) since the app last looked.
+        static OPENED: RefCell<Vec<Result<OpenedFile, String>>> = const { RefCell::new(Vec::new()) };
+        /// Woken when a file arrives, so an idle app notices it.
+        static REPAINT: RefCell<Option<egui::Context>> = const { RefCell::new(None) };
+    }
+
+    /// Lets finished reads wake the app.
+    pub fn set_repaint_context(ctx: egui::Context) {
+        REPAINT.with(|r| *r.borrow_mut() = Some(ctx));
+    }
+
+    /// Files read since the last call, oldest first.
+    pub fn take_opened() -> Vec<Result<OpenedFile, String>> {
+        OPENED.with(|o| std::mem::take(&mut *o.borrow_mut()))
+    }
+
+    pub(super) fn finish(result: Result<OpenedFile, String>) {
+        OPENED.with(|o| o.borrow_mut().push(result));
+        REPAINT.with(|r| {
+            if let Some(ctx) = r.borrow().as_ref() {
+                ctx.request_repaint();
+            }
+        });
+    }
+
+    /// Starts reading a file dropped on the page; see [`take_opened`].
+    pub fn read_dropped_later(file: egui::DroppedFileHandle) {
+        wasm_bindgen_futures::spawn_local(async move {
+            let name = file.path().display().to_string();
+            let result = file
+                .bytes_async()
+                .await
+                .map(|bytes| OpenedFile {
+                    name: name.clone(),
+                    text: String::from_utf8_lossy(&bytes).into_owned(),
+                })
+                .map_err(|e| format!("cannot read {name}: {e}"));
+            finish(result);
+        });
+    }
+
+    /// Downloads `bytes` as `name`: a `Blob`, an object URL, and a click on
+    /// a temporary `<a download>`.
+    pub(super) fn download(name: &str, mime: &str, bytes: &[u8]) -> Result<(), String> {
+        let js = |e: JsValue| format!("{e:?}");
+        let document = web_sys::window()
+            .and_then(|w| w.document())
+            .ok_or("no document")?;
+        let parts = js_sys::Array::of1(&js_sys::Uint8Array::from(bytes));
+        let options = web_sys::BlobPropertyBag::new();
+        options.set_type(mime);
+        let blob =
+            web_sys::Blob::new_with_u8_array_sequence_and_options(&parts, &options).map_err(js)?;
+        let url = web_sys::Url::create_object_url_with_blob(&blob).map_err(js)?;
+        let anchor: web_sys::HtmlAnchorElement = document
+            .create_element("a")
+            .map_err(js)?
+            .dyn_into()
+            .map_err(|_| "not an anchor element")?;
+        anchor.set_href(&url);
+        anchor.set_download(name);
+        anchor.click();
+        web_sys::Url::revoke_object_url(&url).map_err(js)
+    }
 }

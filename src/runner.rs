@@ -167,17 +167,20 @@ impl Runner {
         }
     }
 
-    /// The frame's share of work: first finish sampling the field of the
-    /// current state (so what is shown is consistent), then solver work in
-    /// the run mode, all within `budget`. Returns an error to show.
+    /// The frame's share of work within `budget`: either sampling the field
+    /// of the current state (so what is shown is consistent), or solver work
+    /// in the run mode, never both: one growth step can take most of a
+    /// frame by itself. Returns an error to show.
     pub fn tick(&mut self, budget: Duration, field_key: Option<FieldKey>) -> Result<(), String> {
         let start = Instant::now();
         let deadline = start + budget;
         self.frame_solver_seconds = 0.0;
         if let (Some(sim), Some(key)) = (&self.sim, field_key)
             && self.view.solved
-            && !self.field.work(sim, key, deadline)
+            && !self.field.is_current(&key)
         {
+            self.field.work(sim, key, deadline);
+            self.frame_solver_seconds = start.elapsed().as_secs_f64();
             return Ok(());
         }
         if Instant::now() >= deadline {

@@ -91,7 +91,7 @@ fn decimate<T>(samples: &[T], f: impl Fn(&T) -> PlotPoint) -> Vec<PlotPoint> {
     }
     let stride = n.div_ceil(MAX_PLOT_POINTS);
     let mut out: Vec<PlotPoint> = samples.iter().step_by(stride).map(&f).collect();
-    if (n - 1) % stride != 0 {
+    if !(n - 1).is_multiple_of(stride) {
         out.push(f(&samples[n - 1]));
     }
     out

@@ -245,19 +245,29 @@ fn panels_show_only_what_the_scene_can_use() {
 // --- with the solver -------------------------------------------------------
 
 #[test]
-#[ignore = "needs cdca::Simulation bodies"]
-fn default_scene_opens_solved_with_a_field() {
+fn default_scene_opens_solved_and_a_tip_can_be_inspected() {
     let mut h = harness(Options::default());
     h.run_steps(20);
     let app = h.state();
     assert!(app.is_solved());
     assert!(app.field_is_shown(), "the colour map is sampled");
     assert!(app.message().is_none(), "{:?}", app.message());
-    h.get_by_label("Crack 1, end 1");
+    let tips = app.tip_positions();
+    assert_eq!(tips.len(), 2, "the closed crack has two free tips");
+    let at = app.screen_from_world(tips[1]);
+    click_at(&mut h, at);
+    h.run_steps(3);
+    assert_eq!(
+        h.state().inspected_tip(),
+        Some((1, true)),
+        "tip 2 inspected, with its σ_θθ / τ_rθ curve"
+    );
+    h.get_by_label("K_I");
+    h.get_by_label("Decision");
 }
 
 #[test]
-#[ignore = "needs cdca::Simulation bodies"]
+#[ignore = "needs a resumable Simulation::relax (today each call is a full solve that replaces the history)"]
 fn step_grows_the_residual_history() {
     let mut h = harness(Options::default());
     h.run_steps(5);
@@ -281,10 +291,22 @@ fn step_grows_the_residual_history() {
     );
 }
 
+/// The default scene's crack is stable up to full load (friction and rock
+/// cohesion hold it), so this test pulls the plate in tension instead.
 #[test]
-#[ignore = "needs cdca::Simulation bodies"]
 fn grow_makes_the_crack_longer() {
     let mut h = harness(Options::default());
+    h.run_steps(5);
+    let mut s = h.state().scene().clone();
+    s.boundary.top = cdca::scene::SideBc::Traction {
+        normal: 20e6,
+        shear: 0.0,
+    };
+    s.boundary.right = cdca::scene::SideBc::Free;
+    h.state_mut().push(Command::SetScene {
+        scene: Box::new(s),
+        ongoing: false,
+    });
     h.run_steps(5);
     let length = |app: &WorkbenchApp| {
         app.simulated_cracks()
@@ -293,28 +315,29 @@ fn grow_makes_the_crack_longer() {
             .sum::<f64>()
     };
     let before = length(h.state());
-    assert!(before > 0.0);
-    for _ in 0..40 {
+    assert!(before > 0.05, "solved after the edit: {before}");
+    for _ in 0..10 {
         h.get_by_label("Grow one step").click();
         h.run_steps(3);
-        if length(h.state()) > before + 1e-9 {
+        if length(h.state()) > before + 1e-6 {
             break;
         }
     }
-    assert!(length(h.state()) > before + 1e-9, "no growth in 40 steps");
+    assert!(length(h.state()) > before + 1e-6, "no growth in 10 steps");
     assert!(h.state().growth_steps() > 0);
 }
 
 /// Frame time during Run growth on the default scene (logic + UI on the
-/// CPU, no GPU). Run with `--release -- --ignored --nocapture` for numbers.
+/// CPU, no GPU): `cargo test --release --test ui frame_time -- --nocapture`.
 #[test]
-#[ignore = "needs cdca::Simulation bodies"]
+#[cfg_attr(debug_assertions, ignore = "timing is only meaningful with --release")]
 fn frame_time_during_run_growth() {
     let mut h = harness(Options::default());
     h.run_steps(10);
     h.get_by_label("Run growth").click();
+    h.step();
     let mut times = Vec::new();
-    for _ in 0..150 {
+    for _ in 0..300 {
         let t = std::time::Instant::now();
         h.step();
         times.push(t.elapsed().as_secs_f64());
@@ -322,20 +345,26 @@ fn frame_time_during_run_growth() {
             break;
         }
     }
+    let steps = h.state().growth_steps();
+    let sequence: Vec<String> = times.iter().map(|t| format!("{:.0}", t * 1e3)).collect();
+    println!("frame times [ms]: {}", sequence.join(" "));
     times.sort_by(f64::total_cmp);
     let n = times.len();
     let mean = times.iter().sum::<f64>() / n as f64;
     let p95 = times[(n * 95 / 100).min(n - 1)];
     let max = times[n - 1];
     println!(
-        "Run growth: {n} frames, mean {:.1} ms, p95 {:.1} ms, max {:.1} ms, {} growth steps",
+        "Run growth on the default scene: {n} frames, {steps} growth steps; frame time mean {:.1} ms, p95 {:.1} ms, max {:.1} ms",
         mean * 1e3,
         p95 * 1e3,
-        max * 1e3,
-        h.state().growth_steps()
+        max * 1e3
     );
-    assert!(h.state().growth_steps() > 0);
-    assert!(p95 < 0.1, "p95 frame time {:.1} ms", p95 * 1e3);
+    let median = times[n / 2];
+    assert!(steps > 0);
+    // Target 33 ms (30 Hz). A growth step runs whole inside one frame, so
+    // the first one at a new load (more contact iterations) can exceed it.
+    assert!(median < 0.033, "median frame time {:.1} ms", median * 1e3);
+    assert!(max < 0.15, "max frame time {:.1} ms", max * 1e3);
 }
 
 fn polyline_length(points: &[[f64; 2]]) -> f64 {

@@ -184,7 +184,7 @@ pub fn paint_legend(
         text_color,
     );
     for k in 0..=4 {
-        let t = k as f64 / 4.0;
+        let t = f64::from(k) / 4.0;
         let y = bar.bottom() - t as f32 * bar.height();
         let v = (lo + t * (hi - lo)) * factor;
         let p = Pos2::new(bar.right() + 4.0, y);

@@ -20,7 +20,8 @@ pub use view::ViewTransform;
 /// The accessible name of the canvas (tests find it by this label).
 pub const CANVAS_LABEL: &str = "Specimen canvas";
 
-/// How the specimen is shown (persisted).
+/// How the specimen is shown (persisted). Independent switches, so bools.
+#[allow(clippy::struct_excessive_bools)]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct ViewSettings {
@@ -253,16 +254,16 @@ impl Canvas {
         if escape {
             editor.drawing.clear();
             editor.tool = Tool::Select;
-        } else if response.double_clicked() || enter {
-            if let Some(crack) = editor.finish_drawing() {
-                let mut s = scene.clone();
-                s.cracks.push(crack);
-                editor.selected_crack = Some(s.cracks.len() - 1);
-                cmds.push(Command::SetScene {
-                    scene: Box::new(s),
-                    ongoing: false,
-                });
-            }
+        } else if (response.double_clicked() || enter)
+            && let Some(crack) = editor.finish_drawing()
+        {
+            let mut s = scene.clone();
+            s.cracks.push(crack);
+            editor.selected_crack = Some(s.cracks.len() - 1);
+            cmds.push(Command::SetScene {
+                scene: Box::new(s),
+                ongoing: false,
+            });
         }
     }
 

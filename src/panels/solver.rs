@@ -210,7 +210,11 @@ fn status_ui(ui: &mut Ui, app: &WorkbenchApp) {
     if let Some(p) = app.runner.field.progress() {
         ui.add(ProgressBar::new(p).text("sampling the field"));
     }
-    if let Some((kind, seconds)) = app.comparison.as_ref().and_then(|c| c.status()) {
+    if let Some((kind, seconds)) = app
+        .comparison
+        .as_ref()
+        .and_then(crate::compare::Comparison::status)
+    {
         ui.horizontal(|ui| {
             ui.spinner();
             ui.label(format!(

@@ -6,7 +6,7 @@ use crate::cracks::Crack;
 use crate::material::Elastic;
 use crate::mesh::Mesh;
 use crate::scene::Scene;
-use crate::xfem::{Xfem, XfemParams, prepare_cracks};
+use crate::xfem::{Reuse, Xfem, XfemParams, prepare_cracks};
 
 /// Mesh, material and supports of a validated scene.
 #[derive(Clone, Debug)]
@@ -52,6 +52,11 @@ impl Model {
 
     /// The discretisation of a crack configuration.
     pub fn discretise(&self, cracks: Vec<Crack>) -> Xfem {
+        self.rediscretise(cracks, None)
+    }
+
+    /// The same, reusing what did not change from a previous one.
+    pub fn rediscretise(&self, cracks: Vec<Crack>, reuse: Option<Reuse>) -> Xfem {
         Xfem::build(
             self.mesh.clone(),
             self.elastic.clone(),
@@ -59,6 +64,7 @@ impl Model {
             cracks,
             &self.fixed,
             self.params,
+            reuse,
         )
     }
 }

@@ -496,8 +496,11 @@ impl Simulation {
             ext.push((t, e));
         }
         let mut grown = Vec::new();
+        let mut moved = Vec::new();
         for (t, e) in ext {
             let p = e.point();
+            moved.push(self.state.cracks[t.crack].tip_point(t.tip));
+            moved.push(p);
             if (p - self.state.cracks[t.crack].tip_point(t.tip)).norm() > 1e-6 * m.h() {
                 apply(&mut self.state.cracks[t.crack], t.tip, p);
             }
@@ -513,14 +516,18 @@ impl Simulation {
             });
         }
         classify_tips(&mut self.state.cracks, m.width, m.height, 1e-9 * m.h());
-        self.rebuild();
+        self.rebuild(moved);
         grown
     }
 
-    /// New discretisation for the current cracks; states and displacement
-    /// carried over.
-    fn rebuild(&mut self) {
-        let new = self.model.discretise(self.state.cracks.clone());
+    /// New discretisation for the current cracks (reusing element data away
+    /// from the `moved` tips); states and displacement carried over.
+    fn rebuild(&mut self, moved: Vec<P2>) {
+        let reuse = crate::xfem::Reuse {
+            previous: &self.scratch.xfem,
+            moved,
+        };
+        let new = self.model.rediscretise(self.state.cracks.clone(), Some(reuse));
         let faces = carry_over(&self.scratch.xfem.faces, &self.state.faces, &new.faces, self.model.mesh.h());
         let mut u = vec![0.0; new.n_free()];
         let old = &self.scratch.xfem.dofs;

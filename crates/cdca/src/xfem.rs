@@ -65,6 +65,16 @@ pub struct EnrichedElement {
     pub dofs: Vec<u32>,
     pub qps: Vec<QPoint>,
     pub k: DMatrix<f64>,
+    /// The crack-segment lines it was split along (for reuse checks).
+    pub lines: Vec<(P2, P2)>,
+}
+
+/// What may be reused from the previous discretisation after a crack
+/// change: element data far enough from every point that moved.
+pub struct Reuse<'a> {
+    pub previous: &'a Xfem,
+    /// Old and new positions of the tips that changed.
+    pub moved: Vec<P2>,
 }
 
 /// A crack piece (the part of a crack segment inside one element) carrying
@@ -124,6 +134,7 @@ impl Xfem {
         cracks: Vec<Crack>,
         fixed: &[bool],
         params: XfemParams,
+        reuse: Option<Reuse>,
     ) -> Self {
         let h = mesh.h();
         let funcs = EnrichmentFunctions::new(cracks, 1e-9 * h);
@@ -143,12 +154,12 @@ impl Xfem {
             enriched: Vec::new(),
             faces: Vec::new(),
         };
-        x.build_elements(&segs, &tips);
+        x.build_elements(&segs, &tips, reuse.as_ref());
         x.build_faces();
         x
     }
 
-    fn build_elements(&mut self, segs: &ElementSegments, tips: &BTreeMap<usize, P2>) {
+    fn build_elements(&mut self, segs: &ElementSegments, tips: &BTreeMap<usize, P2>, reuse: Option<&Reuse>) {
         let m = &self.mesh;
         self.slot = vec![REGULAR; m.element_count()];
         let eps = 1e-12 * m.h();
@@ -173,6 +184,19 @@ impl Xfem {
                 .unwrap_or_default();
             let pieces = split_by_lines(&m.element_polygon(e), &lines, eps, 1e-14 * m.hx * m.hy);
             let centre = 0.5 * (lo + hi);
+            if let Some(old) = reuse.and_then(|r| reusable(r, e, &enrs, &scalars, &lines, centre, m.h(), self.params)) {
+                self.slot[e] = self.enriched.len() as u32;
+                self.enriched.push(EnrichedElement {
+                    elem: e,
+                    enrs,
+                    scalars,
+                    dofs,
+                    qps: old.qps.clone(),
+                    k: old.k.clone(),
+                    lines,
+                });
+                continue;
+            }
             let near_tip = enrs
                 .iter()
                 .filter_map(|en| match *en {
@@ -195,6 +219,7 @@ impl Xfem {
                 dofs,
                 qps,
                 k: DMatrix::zeros(0, 0),
+                lines,
             };
             el.k = self.element_stiffness(&el);
             self.slot[e] = self.enriched.len() as u32;
@@ -395,6 +420,29 @@ impl Xfem {
     pub fn n_free(&self) -> usize {
         self.dofs.n_free
     }
+}
+
+/// The previous discretisation's data of element `e`, if it can serve
+/// unchanged: same enrichments and shifts, same cutting lines, and farther
+/// than the enrichment radius plus two elements from every moved tip.
+fn reusable<'a>(
+    r: &'a Reuse,
+    e: usize,
+    enrs: &[Enrichment],
+    scalars: &[ScalarFn],
+    lines: &[(P2, P2)],
+    centre: P2,
+    h: f64,
+    params: XfemParams,
+) -> Option<&'a EnrichedElement> {
+    let slot = *r.previous.slot.get(e)?;
+    if slot == REGULAR {
+        return None;
+    }
+    let old = &r.previous.enriched[slot as usize];
+    let far = (params.enrichment_radius + 2.0) * h;
+    let same = old.enrs == enrs && old.scalars == scalars && old.lines == lines;
+    (same && r.moved.iter().all(|p| (p - centre).norm() > far)).then_some(old)
 }
 
 /// Gauss rule on the segment from `far` to a crack tip `tip`, graded as

@@ -17,7 +17,10 @@ pub struct ElementBlock {
 }
 
 /// Assembles the lower triangle of the global stiffness (free DOFs).
-pub fn assemble_lower(x: &Xfem, extra: &[ElementBlock]) -> Result<SparseColMat<usize, f64>, String> {
+pub fn assemble_lower(
+    x: &Xfem,
+    extra: &[ElementBlock],
+) -> Result<SparseColMat<usize, f64>, String> {
     let n = x.n_free();
     let mut trip: Vec<Triplet<usize, usize, f64>> = Vec::with_capacity(x.mesh.element_count() * 36);
     let mut push = |dofs: &[u32], k: &dyn Fn(usize, usize) -> f64| {

@@ -142,7 +142,9 @@ pub fn contact_system(
         let crack = &x.funcs.cracks[fp.crack];
         let (jn, jt) = jump_operators(fp);
         let nd = jn.len();
-        let k = blocks.entry(fp.slot).or_insert_with(|| DMatrix::zeros(nd, nd));
+        let k = blocks
+            .entry(fp.slot)
+            .or_insert_with(|| DMatrix::zeros(nd, nd));
         k.ger(fp.w * crack.kn, &jn, &jn, 1.0);
         // force on the right-hand side: stick `+w k_T g_T^s J_t`, slip `−w p_T J_t`
         let ft = match st.state {
@@ -159,7 +161,10 @@ pub fn contact_system(
             }
         }
     }
-    blocks.into_iter().map(|(slot, k)| ElementBlock { slot, k }).collect()
+    blocks
+        .into_iter()
+        .map(|(slot, k)| ElementBlock { slot, k })
+        .collect()
 }
 
 /// Counts of points per state.
@@ -178,7 +183,12 @@ pub fn counts(states: &[FaceState]) -> crate::report::ContactCounts {
 /// Carries face states over to a new discretisation: each new point takes
 /// the state of the nearest old point of the same crack (new faces start
 /// open).
-pub fn carry_over(old: &[FacePoint], old_states: &[FaceState], new: &[FacePoint], h: f64) -> Vec<FaceState> {
+pub fn carry_over(
+    old: &[FacePoint],
+    old_states: &[FaceState],
+    new: &[FacePoint],
+    h: f64,
+) -> Vec<FaceState> {
     new.iter()
         .map(|fp| {
             old.iter()

@@ -78,7 +78,12 @@ pub fn solve_with_contact(
         info.linear_iterations += lin.iterations;
         info.last = lin;
         let changed = update_states(x, u, committed, &mut states, &mut tracker, params);
-        let du: f64 = u.iter().zip(&before).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
+        let du: f64 = u
+            .iter()
+            .zip(&before)
+            .map(|(a, b)| (a - b) * (a - b))
+            .sum::<f64>()
+            .sqrt();
         let nu: f64 = u.iter().map(|a| a * a).sum::<f64>().sqrt();
         info.iterations = it;
         info.residual = if nu > 0.0 { du / nu } else { du };
@@ -159,7 +164,13 @@ pub fn any_slip(states: &[FaceState]) -> bool {
 
 /// The state of a frozen point: its kind is kept, its tractions follow the
 /// gaps.
-fn forced(kind: ContactState, crack: &crate::cracks::Crack, slip: f64, gn: f64, gt: f64) -> FaceState {
+fn forced(
+    kind: ContactState,
+    crack: &crate::cracks::Crack,
+    slip: f64,
+    gn: f64,
+    gt: f64,
+) -> FaceState {
     let free = update_point(crack, slip, gn, gt);
     match kind {
         ContactState::Open => FaceState {

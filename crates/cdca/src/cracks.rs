@@ -37,7 +37,11 @@ impl Crack {
     /// Builds a crack from the scene; `h` is the element size and `young`
     /// Young's modulus (for the penalty default `k_N = 100 E/h`).
     pub fn from_spec(spec: &CrackSpec, h: f64, young: f64) -> Self {
-        let points: Vec<P2> = spec.polyline(h).into_iter().map(crate::geometry::p2).collect();
+        let points: Vec<P2> = spec
+            .polyline(h)
+            .into_iter()
+            .map(crate::geometry::p2)
+            .collect();
         let kn = spec.normal_stiffness.unwrap_or(100.0 * young / h);
         let kt = spec.shear_stiffness.unwrap_or(0.1 * kn);
         Self {
@@ -52,7 +56,11 @@ impl Crack {
 
     /// Position of tip `k` (0 = first point, 1 = last).
     pub fn tip_point(&self, k: usize) -> P2 {
-        if k == 0 { self.points[0] } else { self.points[self.points.len() - 1] }
+        if k == 0 {
+            self.points[0]
+        } else {
+            self.points[self.points.len() - 1]
+        }
     }
 
     /// Outward unit tangent at tip `k`.
@@ -170,10 +178,10 @@ pub fn junction_side(secondary: &Crack, k: usize, main: &Crack) -> f64 {
 pub fn first_crossing(crack: &Crack, a: P2, b: P2) -> Option<(f64, P2)> {
     let mut best: Option<(f64, P2)> = None;
     for (c, d) in crack.segments() {
-        if let Some((s, _)) = crate::geometry::segment_intersection(a, b, c, d) {
-            if best.is_none_or(|(bs, _)| s < bs) {
-                best = Some((s, a + s * (b - a)));
-            }
+        if let Some((s, _)) = crate::geometry::segment_intersection(a, b, c, d)
+            && best.is_none_or(|(bs, _)| s < bs)
+        {
+            best = Some((s, a + s * (b - a)));
         }
     }
     best

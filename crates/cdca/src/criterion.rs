@@ -55,7 +55,9 @@ impl CriterionParams {
         Self {
             kind,
             r0,
-            sigma_t: m.tensile_strength.unwrap_or(m.k_ic / (2.0 * PI * r0).sqrt()),
+            sigma_t: m
+                .tensile_strength
+                .unwrap_or(m.k_ic / (2.0 * PI * r0).sqrt()),
             cohesion: m.cohesion,
             friction_angle: m.friction_angle_deg.to_radians(),
             k_ic: m.k_ic,
@@ -71,8 +73,11 @@ pub fn sample_field(frame: &TipFrame, r0: f64, stress: &dyn Fn(P2) -> Option<[f6
         let th = sample_angle(i);
         let er = frame.global(P2::new(th.cos(), th.sin()));
         let et = frame.global(P2::new(-th.sin(), th.cos()));
-        let Some(s) = stress(frame.origin + r0 * er) else { continue };
-        let traction = |a: P2, b: P2| a.x * (s[0] * b.x + s[2] * b.y) + a.y * (s[2] * b.x + s[1] * b.y);
+        let Some(s) = stress(frame.origin + r0 * er) else {
+            continue;
+        };
+        let traction =
+            |a: P2, b: P2| a.x * (s[0] * b.x + s[2] * b.y) + a.y * (s[2] * b.x + s[1] * b.y);
         c.theta.push(th);
         c.sigma_tt.push(traction(et, et));
         c.tau_rt.push(traction(er, et));
@@ -89,8 +94,10 @@ pub fn sample_williams(s: &Sifs, r0: f64) -> Circle {
         let hc = (0.5 * th).cos();
         let (st, ct) = th.sin_cos();
         c.theta.push(th);
-        c.sigma_tt.push(a * hc * (s.k1 * hc * hc - 1.5 * s.k2 * st) + s.t * st * st);
-        c.tau_rt.push(0.5 * a * hc * (s.k1 * st + s.k2 * (3.0 * ct - 1.0)) - s.t * st * ct);
+        c.sigma_tt
+            .push(a * hc * (s.k1 * hc * hc - 1.5 * s.k2 * st) + s.t * st * st);
+        c.tau_rt
+            .push(0.5 * a * hc * (s.k1 * st + s.k2 * (3.0 * ct - 1.0)) - s.t * st * ct);
     }
     c
 }
@@ -133,24 +140,36 @@ fn argmax(theta: &[f64], v: &[f64]) -> Option<(f64, f64)> {
 
 /// Decision of the chosen criterion at one tip.
 pub fn decide(p: &CriterionParams, circle: &Circle, s: &Sifs) -> CriterionReport {
-    let sigma_theta_max = circle.sigma_tt.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let sigma_theta_max = circle
+        .sigma_tt
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
     let tau_max = circle.tau_rt.iter().map(|v| v.abs()).fold(0.0, f64::max);
     let mut out = CriterionReport {
         mode: Mode::None,
         angle_deg: 0.0,
-        sigma_theta_max: if sigma_theta_max.is_finite() { sigma_theta_max } else { 0.0 },
+        sigma_theta_max: if sigma_theta_max.is_finite() {
+            sigma_theta_max
+        } else {
+            0.0
+        },
         tau_max,
     };
     match p.kind {
         CriterionKind::Comprehensive => {
-            let Some((t0, s0)) = argmax(&circle.theta, &circle.sigma_tt) else { return out };
+            let Some((t0, s0)) = argmax(&circle.theta, &circle.sigma_tt) else {
+                return out;
+            };
             if s0 >= p.sigma_t {
                 out.mode = Mode::Tension;
                 out.angle_deg = t0.to_degrees();
                 return out;
             }
             let abs_tau: Vec<f64> = circle.tau_rt.iter().map(|v| v.abs()).collect();
-            let Some((t1, tau)) = argmax(&circle.theta, &abs_tau) else { return out };
+            let Some((t1, tau)) = argmax(&circle.theta, &abs_tau) else {
+                return out;
+            };
             let sigma_n = -interpolate(&circle.theta, &circle.sigma_tt, t1);
             out.angle_deg = t1.to_degrees();
             if tau >= sigma_n.max(0.0) * p.friction_angle.tan() + p.cohesion {
@@ -217,7 +236,11 @@ mod tests {
     /// The Williams circle's σ_θθ maximum reproduces the MTS angle.
     #[test]
     fn williams_sampling_peaks_at_mts_angle() {
-        let s = Sifs { k1: 1e6, k2: 1e6, t: 0.0 };
+        let s = Sifs {
+            k1: 1e6,
+            k2: 1e6,
+            t: 0.0,
+        };
         let c = sample_williams(&s, 0.01);
         let (th, _) = argmax(&c.theta, &c.sigma_tt).expect("samples");
         assert!((th.to_degrees() + 53.13).abs() < 0.1, "{}", th.to_degrees());

@@ -24,7 +24,8 @@ pub struct Pattern {
 impl Pattern {
     pub fn new(x: &Xfem) -> Result<Self, SolveError> {
         let n = x.n_free();
-        let mut trip: Vec<Triplet<usize, usize, f64>> = Vec::with_capacity(x.mesh.element_count() * 36);
+        let mut trip: Vec<Triplet<usize, usize, f64>> =
+            Vec::with_capacity(x.mesh.element_count() * 36);
         let mut push = |dofs: &[u32]| {
             for &dj in dofs.iter().filter(|&&d| d != FIXED) {
                 for &di in dofs.iter().filter(|&&d| d != FIXED && d >= dj) {
@@ -41,8 +42,10 @@ impl Pattern {
             push(&el.dofs);
         }
         let not_pd = |detail: String| SolveError::NotPositiveDefinite { dofs: n, detail };
-        let mat = SparseColMat::try_new_from_triplets(n, n, &trip).map_err(|e| not_pd(format!("{e:?}")))?;
-        let symbolic = SymbolicLlt::try_new(mat.symbolic(), Side::Lower).map_err(|e| not_pd(format!("{e:?}")))?;
+        let mat = SparseColMat::try_new_from_triplets(n, n, &trip)
+            .map_err(|e| not_pd(format!("{e:?}")))?;
+        let symbolic = SymbolicLlt::try_new(mat.symbolic(), Side::Lower)
+            .map_err(|e| not_pd(format!("{e:?}")))?;
         Ok(Self { mat, symbolic })
     }
 
@@ -84,12 +87,11 @@ impl Pattern {
         for b in extra {
             add(&x.enriched[b.slot].dofs, &|i, j| b.k[(i, j)]);
         }
-        let llt = Llt::try_new_with_symbolic(self.symbolic.clone(), mat.as_ref(), Side::Lower).map_err(|e| {
-            SolveError::NotPositiveDefinite {
+        let llt = Llt::try_new_with_symbolic(self.symbolic.clone(), mat.as_ref(), Side::Lower)
+            .map_err(|e| SolveError::NotPositiveDefinite {
                 dofs: n,
                 detail: format!("{e:?} (a mechanism: check supports, or a singular enrichment)"),
-            }
-        })?;
+            })?;
         Ok(Factor { llt, n })
     }
 }
@@ -104,11 +106,14 @@ impl Factor {
     /// Assembles and factorises `K` (bulk plus `extra` blocks).
     pub fn new(x: &Xfem, extra: &[ElementBlock]) -> Result<Self, SolveError> {
         let n = x.n_free();
-        let k = assemble_lower(x, extra).map_err(|detail| SolveError::NotPositiveDefinite { dofs: n, detail })?;
-        let llt = k.sp_cholesky(Side::Lower).map_err(|e| SolveError::NotPositiveDefinite {
-            dofs: n,
-            detail: format!("{e:?} (a mechanism: check supports, or a singular enrichment)"),
-        })?;
+        let k = assemble_lower(x, extra)
+            .map_err(|detail| SolveError::NotPositiveDefinite { dofs: n, detail })?;
+        let llt = k
+            .sp_cholesky(Side::Lower)
+            .map_err(|e| SolveError::NotPositiveDefinite {
+                dofs: n,
+                detail: format!("{e:?} (a mechanism: check supports, or a singular enrichment)"),
+            })?;
         Ok(Self { llt, n })
     }
 

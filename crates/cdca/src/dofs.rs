@@ -49,7 +49,11 @@ impl DofMap {
             next += 2;
             let mut v = Vec::with_capacity(list.len());
             for (kind, shift) in list {
-                v.push(NodeEnrichment { kind, shift, first: next });
+                v.push(NodeEnrichment {
+                    kind,
+                    shift,
+                    first: next,
+                });
                 next += 2 * kind.functions();
             }
             node_enr.push(v);
@@ -88,8 +92,15 @@ impl DofMap {
     /// Free indices of all DOFs of node `n` (standard first), skipping
     /// constrained ones.
     pub fn node_free(&self, n: usize) -> impl Iterator<Item = u32> + '_ {
-        let end = self.node_first.get(n + 1).copied().unwrap_or(self.free.len());
-        self.free[self.node_first[n]..end].iter().copied().filter(|&f| f != FIXED)
+        let end = self
+            .node_first
+            .get(n + 1)
+            .copied()
+            .unwrap_or(self.free.len());
+        self.free[self.node_first[n]..end]
+            .iter()
+            .copied()
+            .filter(|&f| f != FIXED)
     }
 
     /// Whether node `n` carries any enrichment.

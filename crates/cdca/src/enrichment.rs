@@ -64,7 +64,10 @@ impl EnrichmentFunctions {
                     .collect()
             })
             .collect();
-        let frames = cracks.iter().map(|c| [TipFrame::of(c, 0), TipFrame::of(c, 1)]).collect();
+        let frames = cracks
+            .iter()
+            .map(|c| [TipFrame::of(c, 0), TipFrame::of(c, 1)])
+            .collect();
         Self {
             cracks,
             junctions,
@@ -79,7 +82,11 @@ impl EnrichmentFunctions {
 
     /// Sign of φ_j with 0 (within the snapping distance) counted as +1.
     pub fn side(&self, crack: usize, x: P2) -> f64 {
-        if self.cracks[crack].phi(x) >= -self.snap { 1.0 } else { -1.0 }
+        if self.cracks[crack].phi(x) >= -self.snap {
+            1.0
+        } else {
+            -1.0
+        }
     }
 
     /// The Heaviside/junction function of crack `j` at `x` (±1, or 0 on the
@@ -106,7 +113,9 @@ impl EnrichmentFunctions {
                 let mut v = EnrValue::default();
                 v.f[0] = match face {
                     Some((c, side)) if c == crack => {
-                        let mask = self.junctions[crack].iter().all(|&(m, r)| self.side(m, x) == r);
+                        let mask = self.junctions[crack]
+                            .iter()
+                            .all(|&(m, r)| self.side(m, x) == r);
                         if mask { side } else { 0.0 }
                     }
                     _ => self.heaviside(crack, x),
@@ -115,7 +124,9 @@ impl EnrichmentFunctions {
             }
             Enrichment::Tip { crack, tip } => {
                 let (phi, grad) = match face {
-                    Some((c, side)) if c == crack => (if side > 0.0 { 0.0 } else { -0.0 }, P2::zeros()),
+                    Some((c, side)) if c == crack => {
+                        (if side > 0.0 { 0.0 } else { -0.0 }, P2::zeros())
+                    }
                     _ => crate::geometry::level_set(x, &self.cracks[crack].points),
                 };
                 branch(self.frame(crack, tip), x, phi, grad)
@@ -145,7 +156,12 @@ pub fn branch(frame: &TipFrame, x: P2, phi: f64, grad_phi: P2) -> EnrValue {
     let (s, c) = th.sin_cos();
     let f = [sr * s2, sr * c2, sr * s * s2, sr * s * c2];
     // ∂F/∂r and ∂F/∂θ
-    let fr = [f[0] / (2.0 * r), f[1] / (2.0 * r), f[2] / (2.0 * r), f[3] / (2.0 * r)];
+    let fr = [
+        f[0] / (2.0 * r),
+        f[1] / (2.0 * r),
+        f[2] / (2.0 * r),
+        f[3] / (2.0 * r),
+    ];
     let ft = [
         0.5 * sr * c2,
         -0.5 * sr * s2,
@@ -180,9 +196,16 @@ mod tests {
         let v = branch_straight(&frame, x);
         let h = 1e-7;
         for i in 0..4 {
-            let dx = (branch_straight(&frame, x + P2::new(h, 0.0)).f[i] - branch_straight(&frame, x - P2::new(h, 0.0)).f[i]) / (2.0 * h);
-            let dy = (branch_straight(&frame, x + P2::new(0.0, h)).f[i] - branch_straight(&frame, x - P2::new(0.0, h)).f[i]) / (2.0 * h);
-            assert!((dx - v.g[i].x).abs() < 1e-6 && (dy - v.g[i].y).abs() < 1e-6, "F{i}");
+            let dx = (branch_straight(&frame, x + P2::new(h, 0.0)).f[i]
+                - branch_straight(&frame, x - P2::new(h, 0.0)).f[i])
+                / (2.0 * h);
+            let dy = (branch_straight(&frame, x + P2::new(0.0, h)).f[i]
+                - branch_straight(&frame, x - P2::new(0.0, h)).f[i])
+                / (2.0 * h);
+            assert!(
+                (dx - v.g[i].x).abs() < 1e-6 && (dy - v.g[i].y).abs() < 1e-6,
+                "F{i}"
+            );
         }
     }
 

@@ -18,7 +18,13 @@ pub enum SceneError {
 }
 
 impl SceneError {
-    pub(crate) fn invalid(field: impl Into<String>, value: impl ToString, reason: impl Into<String>) -> Self {
+    // the value is usually a temporary (a number or a formatted string)
+    #[allow(clippy::needless_pass_by_value)]
+    pub(crate) fn invalid(
+        field: impl Into<String>,
+        value: impl ToString,
+        reason: impl Into<String>,
+    ) -> Self {
         Self::Invalid {
             field: field.into(),
             value: value.to_string(),

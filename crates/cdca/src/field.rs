@@ -23,7 +23,8 @@ impl Field<'_> {
     /// Value in element `e` at `x` (x may lie on the element's boundary).
     pub fn in_element(&self, e: usize, x: P2) -> PointValue {
         let (mut vals, mut grads, mut dofs) = (Vec::new(), Vec::new(), Vec::new());
-        self.xfem.eval_element(e, x, &mut vals, &mut grads, &mut dofs);
+        self.xfem
+            .eval_element(e, x, &mut vals, &mut grads, &mut dofs);
         let mut out = PointValue::default();
         for (s, (&v, g)) in vals.iter().zip(&grads).enumerate() {
             for c in 0..2 {

@@ -58,7 +58,11 @@ pub fn level_set(p: P2, pts: &[P2]) -> (f64, P2) {
         return ((p - a).dot(&normal), normal);
     }
     // closest to an interior vertex
-    let k = if best_t <= 0.0 { best_seg } else { best_seg + 1 };
+    let k = if best_t <= 0.0 {
+        best_seg
+    } else {
+        best_seg + 1
+    };
     let d = p - pts[k];
     let dist = d.norm();
     let side = vertex_side(p, pts, k);
@@ -80,7 +84,11 @@ fn vertex_side(p: P2, pts: &[P2], k: usize) -> f64 {
     let t0 = (pts[k] - pts[k - 1]).normalize();
     let t1 = (pts[k + 1] - pts[k]).normalize();
     let n = perp(t0) + perp(t1);
-    let n = if n.norm_squared() < 1e-24 { perp(t0) } else { n };
+    let n = if n.norm_squared() < 1e-24 {
+        perp(t0)
+    } else {
+        n
+    };
     (p - pts[k]).dot(&n)
 }
 
@@ -134,7 +142,10 @@ pub fn clip_segment_to_box(a: P2, b: P2, lo: P2, hi: P2) -> Option<(f64, f64)> {
 /// Area of a polygon (positive when counter-clockwise).
 pub fn polygon_area(poly: &[P2]) -> f64 {
     let n = poly.len();
-    (0..n).map(|i| cross(poly[i], poly[(i + 1) % n])).sum::<f64>() * 0.5
+    (0..n)
+        .map(|i| cross(poly[i], poly[(i + 1) % n]))
+        .sum::<f64>()
+        * 0.5
 }
 
 /// Centroid of a non-degenerate polygon.

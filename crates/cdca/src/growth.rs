@@ -28,7 +28,16 @@ impl Extension {
 /// Where tip `k` of crack `c` goes when it grows by `da` at `angle` (rad,
 /// tip frame), in a `width × height` specimen; `snap` is the distance
 /// within which it is put onto a crack or the boundary.
-pub fn extend(cracks: &[Crack], c: usize, k: usize, angle: f64, da: f64, width: f64, height: f64, snap: f64) -> Extension {
+pub fn extend(
+    cracks: &[Crack],
+    c: usize,
+    k: usize,
+    angle: f64,
+    da: f64,
+    width: f64,
+    height: f64,
+    snap: f64,
+) -> Extension {
     let frame = TipFrame::of(&cracks[c], k);
     let d = frame.global(P2::new(angle.cos(), angle.sin()));
     let a = frame.origin;
@@ -37,15 +46,21 @@ pub fn extend(cracks: &[Crack], c: usize, k: usize, angle: f64, da: f64, width: 
     // the first crack crossed (own crack: skip the segment at this tip)
     let mut best: Option<(f64, P2, usize)> = None;
     for (m, other) in cracks.iter().enumerate() {
-        let hit = if m == c { own_crossing(other, k, a, b) } else { first_crossing(other, a, b) };
-        if let Some((s, p)) = hit {
-            if s * reach > 1e-9 * da && best.is_none_or(|(bs, _, _)| s < bs) {
-                best = Some((s, p, m));
-            }
+        let hit = if m == c {
+            own_crossing(other, k, a, b)
+        } else {
+            first_crossing(other, a, b)
+        };
+        if let Some((s, p)) = hit
+            && s * reach > 1e-9 * da
+            && best.is_none_or(|(bs, _, _)| s < bs)
+        {
+            best = Some((s, p, m));
         }
     }
     // leaving the specimen
-    let exit = clip_segment_to_box(a, b, P2::zeros(), P2::new(width, height)).map_or(0.0, |(_, t1)| t1);
+    let exit =
+        clip_segment_to_box(a, b, P2::zeros(), P2::new(width, height)).map_or(0.0, |(_, t1)| t1);
     match best {
         Some((s, p, m)) if s <= exit => Extension::Junction(p, m),
         _ if exit < 1.0 => Extension::Boundary(a + exit * (b - a)),
@@ -63,10 +78,10 @@ fn own_crossing(crack: &Crack, k: usize, a: P2, b: P2) -> Option<(f64, P2)> {
         if i == skip {
             continue;
         }
-        if let Some((s, _)) = crate::geometry::segment_intersection(a, b, c, d) {
-            if best.is_none_or(|(bs, _)| s < bs) {
-                best = Some((s, a + s * (b - a)));
-            }
+        if let Some((s, _)) = crate::geometry::segment_intersection(a, b, c, d)
+            && best.is_none_or(|(bs, _)| s < bs)
+        {
+            best = Some((s, a + s * (b - a)));
         }
     }
     best
@@ -99,10 +114,15 @@ mod tests {
 
     #[test]
     fn growth_stops_on_another_crack_and_on_the_boundary() {
-        let cracks = vec![crack(&[[0.2, 0.5], [0.4, 0.5]]), crack(&[[0.45, 0.2], [0.45, 0.8]])];
+        let cracks = vec![
+            crack(&[[0.2, 0.5], [0.4, 0.5]]),
+            crack(&[[0.45, 0.2], [0.45, 0.8]]),
+        ];
         // tip 1 of crack 0 grows straight (+x) by 0.1: crosses crack 1 at x = 0.45
         match extend(&cracks, 0, 1, 0.0, 0.1, 1.0, 1.0, 0.01) {
-            Extension::Junction(p, 1) => assert!((p.x - 0.45).abs() < 1e-12 && (p.y - 0.5).abs() < 1e-12),
+            Extension::Junction(p, 1) => {
+                assert!((p.x - 0.45).abs() < 1e-12 && (p.y - 0.5).abs() < 1e-12)
+            }
             e => panic!("{e:?}"),
         }
         // tip 0 of crack 0 grows by 0.25 (−x): leaves at x = 0
@@ -111,6 +131,9 @@ mod tests {
             e => panic!("{e:?}"),
         }
         // a short step stays free
-        assert!(matches!(extend(&cracks, 0, 0, 0.0, 0.05, 1.0, 1.0, 0.01), Extension::Free(_)));
+        assert!(matches!(
+            extend(&cracks, 0, 0, 0.0, 0.05, 1.0, 1.0, 0.01),
+            Extension::Free(_)
+        ));
     }
 }

@@ -20,7 +20,17 @@ impl Elastic {
         let d = match m.plane {
             Plane::Stress => {
                 let c = e / (1.0 - nu * nu);
-                Matrix3::new(c, c * nu, 0.0, c * nu, c, 0.0, 0.0, 0.0, c * (1.0 - nu) / 2.0)
+                Matrix3::new(
+                    c,
+                    c * nu,
+                    0.0,
+                    c * nu,
+                    c,
+                    0.0,
+                    0.0,
+                    0.0,
+                    c * (1.0 - nu) / 2.0,
+                )
             }
             Plane::Strain => {
                 let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));

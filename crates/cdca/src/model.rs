@@ -22,7 +22,12 @@ pub struct Model {
 impl Model {
     /// Builds the model; the scene must already be validated.
     pub fn new(scene: Scene) -> Self {
-        let mesh = Mesh::new(scene.specimen.width, scene.specimen.height, scene.mesh.nx, scene.mesh.ny);
+        let mesh = Mesh::new(
+            scene.specimen.width,
+            scene.specimen.height,
+            scene.mesh.nx,
+            scene.mesh.ny,
+        );
         let elastic = Elastic::new(&scene.material);
         let fixed = constrained_dofs(&mesh, &scene.boundary);
         let params = XfemParams {
@@ -56,7 +61,7 @@ impl Model {
     }
 
     /// The same, reusing what did not change from a previous one.
-    pub fn rediscretise(&self, cracks: Vec<Crack>, reuse: Option<Reuse>) -> Xfem {
+    pub fn rediscretise(&self, cracks: Vec<Crack>, reuse: Option<&Reuse>) -> Xfem {
         Xfem::build(
             self.mesh.clone(),
             self.elastic.clone(),

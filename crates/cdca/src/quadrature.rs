@@ -121,7 +121,11 @@ mod tests {
             let g = gauss_legendre(n);
             let deg = 2 * n - 1;
             let num: f64 = g.iter().map(|&(x, w)| w * x.powi(deg as i32 - 1)).sum();
-            let exact = if (deg - 1) % 2 == 0 { 2.0 / deg as f64 } else { 0.0 };
+            let exact = if (deg - 1) % 2 == 0 {
+                2.0 / deg as f64
+            } else {
+                0.0
+            };
             assert!((num - exact).abs() < 1e-14, "n = {n}");
         }
     }

@@ -46,7 +46,10 @@ fn williams(mode: usize, r: f64, th: f64, mu: f64, kappa: f64) -> Aux {
     let (stress, g, dg) = if mode == 0 {
         (
             [c * (1.0 - s * s3), c * (1.0 + s * s3), s * c * c3],
-            [c * (kappa - 1.0 + 2.0 * s * s), s * (kappa + 1.0 - 2.0 * c * c)],
+            [
+                c * (kappa - 1.0 + 2.0 * s * s),
+                s * (kappa + 1.0 - 2.0 * c * c),
+            ],
             [
                 -0.5 * s * (kappa - 1.0 + 2.0 * s * s) + 2.0 * s * c * c,
                 0.5 * c * (kappa + 1.0 - 2.0 * c * c) + 2.0 * c * s * s,
@@ -55,7 +58,10 @@ fn williams(mode: usize, r: f64, th: f64, mu: f64, kappa: f64) -> Aux {
     } else {
         (
             [-s * (2.0 + c * c3), s * c * c3, c * (1.0 - s * s3)],
-            [s * (kappa + 1.0 + 2.0 * c * c), -c * (kappa - 1.0 - 2.0 * s * s)],
+            [
+                s * (kappa + 1.0 + 2.0 * c * c),
+                -c * (kappa - 1.0 - 2.0 * s * s),
+            ],
             [
                 0.5 * c * (kappa + 1.0 + 2.0 * c * c) - 2.0 * s * s * c,
                 0.5 * s * (kappa - 1.0 - 2.0 * s * s) + 2.0 * s * c * c,
@@ -88,7 +94,11 @@ fn point_force(r: f64, th: f64, mu: f64, kappa: f64) -> Aux {
 /// Auxiliary field number `m` (0: mode I, 1: mode II, 2: point force).
 fn aux(m: usize, r: f64, th: f64, el: &Elastic) -> Aux {
     let (mu, kappa) = (el.shear_modulus(), el.kappa());
-    if m < 2 { williams(m, r, th, mu, kappa) } else { point_force(r, th, mu, kappa) }
+    if m < 2 {
+        williams(m, r, th, mu, kappa)
+    } else {
+        point_force(r, th, mu, kappa)
+    }
 }
 
 /// Interaction integrals of one tip; `tractions[i]` is the contact traction
@@ -97,7 +107,13 @@ pub fn tip_sifs(field: &Field, crack: usize, frame: &TipFrame, r_j: f64, tractio
     let x = field.xfem;
     let m = &x.mesh;
     let el = &x.elastic;
-    let q_node = |n: usize| if (m.node_pos(n) - frame.origin).norm() < r_j { 1.0 } else { 0.0 };
+    let q_node = |n: usize| {
+        if (m.node_pos(n) - frame.origin).norm() < r_j {
+            1.0
+        } else {
+            0.0
+        }
+    };
     let mut integral = [0.0; 3];
     let pad = P2::new(r_j + m.h(), r_j + m.h());
     let mut qps: Vec<QPoint> = Vec::new();
@@ -130,9 +146,11 @@ pub fn tip_sifs(field: &Field, crack: usize, frame: &TipFrame, r_j: f64, tractio
                 let ea = el.strain_from_stress(a.s);
                 let w = sl[0] * ea[0] + sl[1] * ea[1] + sl[2] * ea[2];
                 // j = 1
-                let t1 = sl[0] * a.du1[0] + sl[2] * a.du1[1] + a.s[0] * gl[0][0] + a.s[2] * gl[1][0] - w;
+                let t1 =
+                    sl[0] * a.du1[0] + sl[2] * a.du1[1] + a.s[0] * gl[0][0] + a.s[2] * gl[1][0] - w;
                 // j = 2
-                let t2 = sl[2] * a.du1[0] + sl[1] * a.du1[1] + a.s[2] * gl[0][0] + a.s[1] * gl[1][0];
+                let t2 =
+                    sl[2] * a.du1[0] + sl[1] * a.du1[1] + a.s[2] * gl[0][0] + a.s[1] * gl[1][0];
                 *out += (t1 * dq.x + t2 * dq.y) * p.w * x.thickness;
             }
         }
@@ -210,9 +228,15 @@ mod tests {
             let th = x2.atan2(x1);
             let (s, c) = (0.5 * th).sin_cos();
             let g = if mode == 0 {
-                [c * (kappa - 1.0 + 2.0 * s * s), s * (kappa + 1.0 - 2.0 * c * c)]
+                [
+                    c * (kappa - 1.0 + 2.0 * s * s),
+                    s * (kappa + 1.0 - 2.0 * c * c),
+                ]
             } else {
-                [s * (kappa + 1.0 + 2.0 * c * c), -c * (kappa - 1.0 - 2.0 * s * s)]
+                [
+                    s * (kappa + 1.0 + 2.0 * c * c),
+                    -c * (kappa - 1.0 - 2.0 * s * s),
+                ]
             };
             let k = (r / (2.0 * PI)).sqrt() / (2.0 * mu);
             [k * g[0], k * g[1]]
@@ -225,7 +249,11 @@ mod tests {
                 let a = williams(mode, r, x2.atan2(x1), mu, kappa);
                 for c in 0..2 {
                     let fd = (p[c] - m[c]) / (2.0 * h);
-                    assert!((fd - a.du1[c]).abs() < 1e-7, "mode {mode} comp {c}: {fd} vs {}", a.du1[c]);
+                    assert!(
+                        (fd - a.du1[c]).abs() < 1e-7,
+                        "mode {mode} comp {c}: {fd} vs {}",
+                        a.du1[c]
+                    );
                 }
             }
         }

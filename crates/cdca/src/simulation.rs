@@ -8,7 +8,6 @@ use crate::contact::{FaceState, carry_over, contact_system, counts};
 use crate::contact_loop::{
     ContactInfo, ContactParams, FlipTracker, any_slip, solve_with_contact, update_states,
 };
-use crate::relaxation::Relaxation;
 use crate::cracks::{Crack, TipKind, classify_tips};
 use crate::criterion::{Circle, CriterionParams};
 use crate::error::SolveError;
@@ -16,8 +15,9 @@ use crate::field::Field;
 use crate::geometry::P2;
 use crate::growth::{apply, extend};
 use crate::model::Model;
+use crate::relaxation::Relaxation;
 use crate::report::{
-    ContactReport, GrowthStepReport, GrownTip, Mode, Outcome, SolveReport, SolverReport, TipReport,
+    ContactReport, GrownTip, GrowthStepReport, Mode, Outcome, SolveReport, SolverReport, TipReport,
 };
 use crate::scene::Scene;
 use crate::solver::LinearSolver;
@@ -67,7 +67,12 @@ pub struct CriterionCurve {
 
 /// `‖a − b‖ / ‖a‖` (or `‖a − b‖` when a = 0).
 fn relative_change(a: &[f64], b: &[f64]) -> f64 {
-    let d: f64 = a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>().sqrt();
+    let d: f64 = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt();
     let n: f64 = a.iter().map(|x| x * x).sum::<f64>().sqrt();
     if n > 0.0 { d / n } else { d }
 }
@@ -235,7 +240,12 @@ impl Simulation {
     pub fn solve(&mut self) -> Result<SolveReport, SolveError> {
         self.scratch.job = None;
         let start = Instant::now();
-        let f: Vec<f64> = self.scratch.f_ext.iter().map(|v| v * self.state.lambda).collect();
+        let f: Vec<f64> = self
+            .scratch
+            .f_ext
+            .iter()
+            .map(|v| v * self.state.lambda)
+            .collect();
         let params = self.contact_params();
         let (states, info) = solve_with_contact(
             &self.scratch.xfem,
@@ -331,7 +341,12 @@ impl Simulation {
         done_seconds: f64,
     ) -> Result<RelaxJob, SolveError> {
         let x = &self.scratch.xfem;
-        let mut f: Vec<f64> = self.scratch.f_ext.iter().map(|v| v * self.state.lambda).collect();
+        let mut f: Vec<f64> = self
+            .scratch
+            .f_ext
+            .iter()
+            .map(|v| v * self.state.lambda)
+            .collect();
         let blocks = contact_system(x, &states, &self.state.faces, &mut f);
         let spec = &self.model.scene.solver;
         let relaxation = Relaxation::new(spec.kind, spec, x, &blocks, &f, &self.state.u)?;
@@ -364,25 +379,43 @@ impl Simulation {
         let Some(mut job) = self.scratch.job.take() else {
             unreachable!("a job was just started")
         };
-        let status = job.relaxation.run(&self.scratch.xfem, &job.blocks, max_iterations, &mut |_| {})?;
+        let status =
+            job.relaxation
+                .run(&self.scratch.xfem, &job.blocks, max_iterations, &mut |_| {})?;
         let offset = (job.done_iterations, job.done_seconds);
         let history = job.relaxation.history();
-        self.scratch.residual.extend(history[job.copied.min(history.len())..].iter().map(|s| ResidualSample {
-            iteration: s.iteration + offset.0,
-            seconds: s.seconds + offset.1,
-            residual: s.residual,
-        }));
+        self.scratch
+            .residual
+            .extend(
+                history[job.copied.min(history.len())..]
+                    .iter()
+                    .map(|s| ResidualSample {
+                        iteration: s.iteration + offset.0,
+                        seconds: s.seconds + offset.1,
+                        residual: s.residual,
+                    }),
+            );
         job.copied = history.len();
         self.state.u.copy_from_slice(job.relaxation.u());
         if !status.converged {
             let total = offset.0 + status.iterations;
             self.scratch.job = Some(job);
-            return Ok(RelaxStatus { iterations: total, ..status });
+            return Ok(RelaxStatus {
+                iterations: total,
+                ..status
+            });
         }
         // the linear solve converged: the contact iteration
         let params = self.contact_params();
         let committed = self.state.faces.clone();
-        let changed = update_states(&self.scratch.xfem, &self.state.u, &committed, &mut job.states, &mut job.tracker, params);
+        let changed = update_states(
+            &self.scratch.xfem,
+            &self.state.u,
+            &committed,
+            &mut job.states,
+            &mut job.tracker,
+            params,
+        );
         let du = relative_change(&self.state.u, &job.start_u);
         let iterations = offset.0 + status.iterations;
         let contact_iterations = job.contact_iterations + 1;
@@ -399,7 +432,12 @@ impl Simulation {
                     iterations: status.iterations,
                     residual: status.residual,
                     converged: true,
-                    history: job.relaxation.history().iter().map(|s| s.residual).collect(),
+                    history: job
+                        .relaxation
+                        .history()
+                        .iter()
+                        .map(|s| s.residual)
+                        .collect(),
                 },
             };
             self.state.solved = true;
@@ -411,7 +449,13 @@ impl Simulation {
             });
         }
         let seconds = offset.1 + job.relaxation.seconds();
-        let next = self.new_job(job.states, job.tracker, contact_iterations, iterations, seconds)?;
+        let next = self.new_job(
+            job.states,
+            job.tracker,
+            contact_iterations,
+            iterations,
+            seconds,
+        )?;
         self.scratch.job = Some(next);
         Ok(RelaxStatus {
             iterations,
@@ -437,9 +481,18 @@ impl Simulation {
         let (load_steps, max_here, max_steps) = (g.load_steps, g.max_growth_per_step, g.max_steps);
         self.state.lambda = self.state.increment as f64 / load_steps as f64;
         let report = self.solve()?;
-        let da = self.model.scene.growth.increment.unwrap_or(self.criterion_params().r0);
-        let growing: Vec<TipReport> =
-            report.tips.iter().filter(|t| t.criterion.mode != Mode::None).cloned().collect();
+        let da = self
+            .model
+            .scene
+            .growth
+            .increment
+            .unwrap_or(self.criterion_params().r0);
+        let growing: Vec<TipReport> = report
+            .tips
+            .iter()
+            .filter(|t| t.criterion.mode != Mode::None)
+            .cloned()
+            .collect();
         let mut step = GrowthStepReport {
             step: self.state.history.len() + 1,
             load_factor: self.state.lambda,
@@ -462,8 +515,14 @@ impl Simulation {
                 self.state.outcome = Some(Outcome::Unstable);
             }
         }
-        if self.state.outcome.is_none() && self.state.cracks.iter().all(|c| c.free_tips().count() == 0) {
-            let any_boundary = self.state.cracks.iter().any(|c| c.tips.contains(&TipKind::Boundary));
+        if self.state.outcome.is_none()
+            && self.state.cracks.iter().all(|c| c.free_tips().count() == 0)
+        {
+            let any_boundary = self
+                .state
+                .cracks
+                .iter()
+                .any(|c| c.tips.contains(&TipKind::Boundary));
             if !self.state.cracks.is_empty() && any_boundary {
                 self.state.outcome = Some(Outcome::Through);
             }
@@ -527,8 +586,15 @@ impl Simulation {
             previous: &self.scratch.xfem,
             moved,
         };
-        let new = self.model.rediscretise(self.state.cracks.clone(), Some(reuse));
-        let faces = carry_over(&self.scratch.xfem.faces, &self.state.faces, &new.faces, self.model.mesh.h());
+        let new = self
+            .model
+            .rediscretise(self.state.cracks.clone(), Some(&reuse));
+        let faces = carry_over(
+            &self.scratch.xfem.faces,
+            &self.state.faces,
+            &new.faces,
+            self.model.mesh.h(),
+        );
         let mut u = vec![0.0; new.n_free()];
         let old = &self.scratch.xfem.dofs;
         for n in 0..self.model.mesh.node_count() {
@@ -571,7 +637,11 @@ impl Simulation {
 
     /// Current crack polylines, m.
     pub fn cracks(&self) -> Vec<Vec<[f64; 2]>> {
-        self.state.cracks.iter().map(|c| c.points.iter().map(|p| [p.x, p.y]).collect()).collect()
+        self.state
+            .cracks
+            .iter()
+            .map(|c| c.points.iter().map(|p| [p.x, p.y]).collect())
+            .collect()
     }
 
     /// SIFs and criterion at every free tip after the last solve.

@@ -60,7 +60,11 @@ impl LinearSolver for DirectSolver {
     ) -> Result<LinearInfo, SolveError> {
         if matrix_changed || self.factor.is_none() {
             let key = (x.n_free(), x.enriched.len());
-            if self.pattern.as_ref().is_none_or(|(n, e, _)| (*n, *e) != key) {
+            if self
+                .pattern
+                .as_ref()
+                .is_none_or(|(n, e, _)| (*n, *e) != key)
+            {
                 self.pattern = Some((key.0, key.1, Pattern::new(x)?));
             }
             if let Some((_, _, p)) = &self.pattern {
@@ -85,7 +89,12 @@ impl LinearSolver for DirectSolver {
 pub fn relative_residual(x: &Xfem, blocks: &[ElementBlock], f: &[f64], u: &[f64]) -> f64 {
     let mut ku = vec![0.0; f.len()];
     crate::assembly::apply(x, blocks, u, &mut ku);
-    let r: f64 = f.iter().zip(&ku).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
+    let r: f64 = f
+        .iter()
+        .zip(&ku)
+        .map(|(a, b)| (a - b) * (a - b))
+        .sum::<f64>()
+        .sqrt();
     let nf = f.iter().map(|a| a * a).sum::<f64>().sqrt();
     if nf > 0.0 { r / nf } else { r }
 }

@@ -93,16 +93,28 @@ pub fn element_rule(
 /// Collapsed Gauss on a triangle, split in four while it is closer to
 /// `tip` than its diameter (at most `depth` times).
 fn refined_rule(t: [P2; 3], tip: P2, depth: usize, order: usize, out: &mut Vec<QPoint>) {
-    let diam = (t[0] - t[1]).norm().max((t[1] - t[2]).norm()).max((t[2] - t[0]).norm());
+    let diam = (t[0] - t[1])
+        .norm()
+        .max((t[1] - t[2]).norm())
+        .max((t[2] - t[0]).norm());
     if depth == 0 || distance_to_triangle(tip, &t) > diam {
         collapsed_triangle_rule(t[0], t[1], t[2], order, out);
         return;
     }
-    let m = [0.5 * (t[0] + t[1]), 0.5 * (t[1] + t[2]), 0.5 * (t[2] + t[0])];
+    let m = [
+        0.5 * (t[0] + t[1]),
+        0.5 * (t[1] + t[2]),
+        0.5 * (t[2] + t[0]),
+    ];
     // sub-triangles are smaller relative to their distance to the tip: a
     // lower order suffices on them
     let sub_order = order.min(ORDER_REFINED);
-    for sub in [[t[0], m[0], m[2]], [m[0], t[1], m[1]], [m[2], m[1], t[2]], [m[0], m[1], m[2]]] {
+    for sub in [
+        [t[0], m[0], m[2]],
+        [m[0], t[1], m[1]],
+        [m[2], m[1], t[2]],
+        [m[0], m[1], m[2]],
+    ] {
         refined_rule(sub, tip, depth - 1, sub_order, out);
     }
 }
@@ -110,7 +122,9 @@ fn refined_rule(t: [P2; 3], tip: P2, depth: usize, order: usize, out: &mut Vec<Q
 /// Distance from `p` to a triangle (0 inside).
 fn distance_to_triangle(p: P2, t: &[P2; 3]) -> f64 {
     let inside = {
-        let s: Vec<f64> = (0..3).map(|i| crate::geometry::cross(t[(i + 1) % 3] - t[i], p - t[i])).collect();
+        let s: Vec<f64> = (0..3)
+            .map(|i| crate::geometry::cross(t[(i + 1) % 3] - t[i], p - t[i]))
+            .collect();
         s.iter().all(|&v| v >= 0.0) || s.iter().all(|&v| v <= 0.0)
     };
     if inside {
@@ -138,7 +152,12 @@ mod tests {
     use super::*;
 
     fn unit_square() -> Vec<P2> {
-        vec![P2::new(0.0, 0.0), P2::new(1.0, 0.0), P2::new(1.0, 1.0), P2::new(0.0, 1.0)]
+        vec![
+            P2::new(0.0, 0.0),
+            P2::new(1.0, 0.0),
+            P2::new(1.0, 1.0),
+            P2::new(0.0, 1.0),
+        ]
     }
 
     #[test]
@@ -152,7 +171,15 @@ mod tests {
         assert!((area - 1.0).abs() < 1e-12);
         let t = Some(P2::new(0.5, 0.4));
         for (tip, near) in [(None, None), (None, Some(P2::new(0.5, 1.01))), (t, t)] {
-            let q = element_rule(P2::zeros(), P2::new(1.0, 1.0), &pieces, tip, near, true, 1e-12);
+            let q = element_rule(
+                P2::zeros(),
+                P2::new(1.0, 1.0),
+                &pieces,
+                tip,
+                near,
+                true,
+                1e-12,
+            );
             let a: f64 = q.iter().map(|p| p.w).sum();
             assert!((a - 1.0).abs() < 1e-12, "{tip:?} {near:?}: {a}");
         }
@@ -165,7 +192,10 @@ mod tests {
         let lines = [(P2::new(s, 0.0), P2::new(-s, s))];
         let pieces = split_by_lines(&unit_square(), &lines, 1e-14, 1e-16);
         assert_eq!(pieces.len(), 2);
-        let small = pieces.iter().map(|p| polygon_area(p).abs()).fold(f64::INFINITY, f64::min);
+        let small = pieces
+            .iter()
+            .map(|p| polygon_area(p).abs())
+            .fold(f64::INFINITY, f64::min);
         assert!((small - 1e-6).abs() < 1e-12);
     }
 }

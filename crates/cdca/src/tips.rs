@@ -2,8 +2,8 @@
 //! integral (with the contact tractions) and the criterion's decision.
 
 use crate::contact::FaceState;
-use crate::criterion::{Circle, CriterionParams, decide, sample_field, sample_williams};
 use crate::cracks::TipFrame;
+use crate::criterion::{Circle, CriterionParams, decide, sample_field, sample_williams};
 use crate::field::Field;
 use crate::geometry::P2;
 use crate::report::TipReport;
@@ -23,7 +23,12 @@ pub fn evaluate_tips(
     sampling: Sampling,
 ) -> (Vec<TipReport>, Vec<Circle>) {
     let field = Field { xfem: x, u };
-    let tractions: Vec<P2> = x.faces.iter().zip(states).map(|(fp, s)| s.traction(fp)).collect();
+    let tractions: Vec<P2> = x
+        .faces
+        .iter()
+        .zip(states)
+        .map(|(fp, s)| s.traction(fp))
+        .collect();
     let r_j = DOMAIN_RADIUS * x.mesh.h();
     let mut reports = Vec::new();
     let mut circles = Vec::new();
@@ -32,7 +37,9 @@ pub fn evaluate_tips(
             let frame = TipFrame::of(crack, k);
             let s = tip_sifs(&field, c, &frame, r_j, &tractions);
             let circle = match sampling {
-                Sampling::Field => sample_field(&frame, params.r0, &|p| field.stress_averaged_at(p)),
+                Sampling::Field => {
+                    sample_field(&frame, params.r0, &|p| field.stress_averaged_at(p))
+                }
                 Sampling::Williams => sample_williams(&s, params.r0),
             };
             let criterion = decide(params, &circle, &s);

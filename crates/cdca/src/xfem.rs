@@ -134,7 +134,7 @@ impl Xfem {
         cracks: Vec<Crack>,
         fixed: &[bool],
         params: XfemParams,
-        reuse: Option<Reuse>,
+        reuse: Option<&Reuse>,
     ) -> Self {
         let h = mesh.h();
         let funcs = EnrichmentFunctions::new(cracks, 1e-9 * h);
@@ -154,12 +154,17 @@ impl Xfem {
             enriched: Vec::new(),
             faces: Vec::new(),
         };
-        x.build_elements(&segs, &tips, reuse.as_ref());
+        x.build_elements(&segs, &tips, reuse);
         x.build_faces();
         x
     }
 
-    fn build_elements(&mut self, segs: &ElementSegments, tips: &BTreeMap<usize, P2>, reuse: Option<&Reuse>) {
+    fn build_elements(
+        &mut self,
+        segs: &ElementSegments,
+        tips: &BTreeMap<usize, P2>,
+        reuse: Option<&Reuse>,
+    ) {
         let m = &self.mesh;
         self.slot = vec![REGULAR; m.element_count()];
         let eps = 1e-12 * m.h();
@@ -184,7 +189,9 @@ impl Xfem {
                 .unwrap_or_default();
             let pieces = split_by_lines(&m.element_polygon(e), &lines, eps, 1e-14 * m.hx * m.hy);
             let centre = 0.5 * (lo + hi);
-            if let Some(old) = reuse.and_then(|r| reusable(r, e, &enrs, &scalars, &lines, centre, m.h(), self.params)) {
+            if let Some(old) = reuse
+                .and_then(|r| reusable(r, e, &enrs, &scalars, &lines, centre, m.h(), self.params))
+            {
                 self.slot[e] = self.enriched.len() as u32;
                 self.enriched.push(EnrichedElement {
                     elem: e,
@@ -250,7 +257,12 @@ impl Xfem {
         (enrs, scalars)
     }
 
-    fn layout_dofs(&self, nodes: &[usize; 4], scalars: &[ScalarFn], enrs: &[Enrichment]) -> Vec<u32> {
+    fn layout_dofs(
+        &self,
+        nodes: &[usize; 4],
+        scalars: &[ScalarFn],
+        enrs: &[Enrichment],
+    ) -> Vec<u32> {
         let mut dofs = Vec::with_capacity(2 * scalars.len());
         for s in scalars {
             let n = nodes[s.node];
@@ -285,7 +297,13 @@ impl Xfem {
 
     /// Values and gradients of the scalar shape functions of an enriched
     /// element at `x`.
-    pub fn eval_enriched(&self, el: &EnrichedElement, x: P2, vals: &mut Vec<f64>, grads: &mut Vec<P2>) {
+    pub fn eval_enriched(
+        &self,
+        el: &EnrichedElement,
+        x: P2,
+        vals: &mut Vec<f64>,
+        grads: &mut Vec<P2>,
+    ) {
         self.eval_enriched_sided(el, x, None, vals, grads);
     }
 
@@ -299,7 +317,11 @@ impl Xfem {
         grads: &mut Vec<P2>,
     ) {
         let (n, dn) = self.mesh.shape(el.elem, x);
-        let ev: Vec<EnrValue> = el.enrs.iter().map(|&e| self.funcs.eval_sided(e, x, face)).collect();
+        let ev: Vec<EnrValue> = el
+            .enrs
+            .iter()
+            .map(|&e| self.funcs.eval_sided(e, x, face))
+            .collect();
         vals.clear();
         grads.clear();
         for s in &el.scalars {
@@ -320,7 +342,14 @@ impl Xfem {
 
     /// Scalar shape functions of any element at `x` and the element's free
     /// DOFs (two per scalar).
-    pub fn eval_element(&self, e: usize, x: P2, vals: &mut Vec<f64>, grads: &mut Vec<P2>, dofs: &mut Vec<u32>) {
+    pub fn eval_element(
+        &self,
+        e: usize,
+        x: P2,
+        vals: &mut Vec<f64>,
+        grads: &mut Vec<P2>,
+        dofs: &mut Vec<u32>,
+    ) {
         dofs.clear();
         let slot = self.slot[e];
         if slot == REGULAR {
@@ -378,10 +407,17 @@ impl Xfem {
                         continue; // a piece along an edge belongs to one element
                     }
                     let el = &self.enriched[slot as usize];
-                    let tipped = el.enrs.iter().any(|x| matches!(x, Enrichment::Tip { crack, .. } if *crack == c));
+                    let tipped = el
+                        .enrs
+                        .iter()
+                        .any(|x| matches!(x, Enrichment::Tip { crack, .. } if *crack == c));
                     let (pa, pb) = (a + t0 * (b - a), a + t1 * (b - a));
                     let mut q = Vec::new();
-                    let at_tip = |p: P2| crack.free_tips().any(|k| (crack.tip_point(k) - p).norm() < 1e-9 * h);
+                    let at_tip = |p: P2| {
+                        crack
+                            .free_tips()
+                            .any(|k| (crack.tip_point(k) - p).norm() < 1e-9 * h)
+                    };
                     if at_tip(pb) {
                         graded_segment_rule(pa, pb, 6, &mut q);
                     } else if at_tip(pa) {
@@ -402,7 +438,13 @@ impl Xfem {
                         crack: c,
                         x: mid,
                         w: length * self.thickness,
-                        qps: q.iter().map(|p| QPoint { x: p.x, w: p.w * self.thickness }).collect(),
+                        qps: q
+                            .iter()
+                            .map(|p| QPoint {
+                                x: p.x,
+                                w: p.w * self.thickness,
+                            })
+                            .collect(),
                         n,
                         t,
                         s: s0 + (mid - a).norm(),
@@ -504,10 +546,10 @@ fn element_segments(m: &Mesh, cracks: &[Crack]) -> ElementSegments {
             let len = (b - a).norm();
             for e in m.elements_in_box(a.inf(&b), a.sup(&b), 1e-9 * h) {
                 let (lo, hi) = m.element_box(e);
-                if let Some((t0, t1)) = clip_segment_to_box(a, b, lo - pad, hi + pad) {
-                    if (t1 - t0) * len > 1e-12 * h {
-                        out.entry(e).or_default().push((c, s));
-                    }
+                if let Some((t0, t1)) = clip_segment_to_box(a, b, lo - pad, hi + pad)
+                    && (t1 - t0) * len > 1e-12 * h
+                {
+                    out.entry(e).or_default().push((c, s));
                 }
             }
         }
@@ -603,7 +645,7 @@ fn classify_nodes(
         }
     }
     for list in &mut enr {
-        list.sort_by(|a, b| a.0.cmp(&b.0));
+        list.sort_by_key(|a| a.0);
     }
     enr
 }

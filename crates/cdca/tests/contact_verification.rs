@@ -28,8 +28,14 @@ fn biaxial_on(n: usize, k: f64, mu: f64, cohesion: f64, kn_h_over_e: Option<f64>
     s.material.plane = Plane::Stress;
     s.boundary.bottom = SideBc::Roller;
     s.boundary.left = SideBc::Roller;
-    s.boundary.top = SideBc::Traction { normal: -p, shear: 0.0 };
-    s.boundary.right = SideBc::Traction { normal: -k * p, shear: 0.0 };
+    s.boundary.top = SideBc::Traction {
+        normal: -p,
+        shear: 0.0,
+    };
+    s.boundary.right = SideBc::Traction {
+        normal: -k * p,
+        shear: 0.0,
+    };
     let mut c = centre_crack(0.5 + 1e-4, 0.5, A, 45.0);
     c.friction = mu;
     c.cohesion = cohesion;
@@ -71,12 +77,23 @@ fn closed_crack_k2_table() {
     println!("   k     μ   K_II/(τ√πa)  exact   error   K_I/(σn√πa)  contact");
     for (k, mu) in cases {
         let sticks = mu >= (1.0 - k) / (1.0 + k);
-        let r = solve(biaxial_on(if sticks { 160 } else { N }, k, mu, 0.0, None, p));
+        let r = solve(biaxial_on(
+            if sticks { 160 } else { N },
+            k,
+            mu,
+            0.0,
+            None,
+            p,
+        ));
         let (tau, sn) = resolved(k, p);
         let exact = k2_exact(k, mu, 0.0, p);
         assert!(r.contact.converged, "k {k} μ {mu}: {:?}", r.contact);
         for t in &r.tips {
-            let err = if exact > 0.0 { rel(t.k2.abs(), exact) } else { t.k2.abs() / (tau * root) };
+            let err = if exact > 0.0 {
+                rel(t.k2.abs(), exact)
+            } else {
+                t.k2.abs() / (tau * root)
+            };
             println!(
                 "{k:5.2} {mu:5.2}  {:10.4}  {:7.4}  {err:7.4}  {:10.4}   it {} stick {} slip {}",
                 t.k2.abs() / (tau * root),
@@ -88,7 +105,11 @@ fn closed_crack_k2_table() {
             );
             let tol = if exact > 0.0 { 0.03 } else { 0.02 };
             assert!(err < tol, "k {k} μ {mu}: K_II {:.4e} vs {exact:.4e}", t.k2);
-            assert!(t.k1.abs() < 0.02 * sn * root, "k {k} μ {mu}: K_I {:.4e}", t.k1);
+            assert!(
+                t.k1.abs() < 0.02 * sn * root,
+                "k {k} μ {mu}: K_I {:.4e}",
+                t.k1
+            );
         }
         if exact == 0.0 {
             assert_eq!(r.contact.slip, 0, "a sticking crack has no slip point");
@@ -124,7 +145,11 @@ fn slip_profile_is_elliptical() {
             continue;
         }
         let exact = 4.0 * tau / 4.78e9 * (A * A - s * s).sqrt();
-        assert!(rel(cp.slip.abs(), exact) < 0.05, "s = {s:.4}: slip {:.4e} vs {exact:.4e}", cp.slip);
+        assert!(
+            rel(cp.slip.abs(), exact) < 0.05,
+            "s = {s:.4}: slip {:.4e} vs {exact:.4e}",
+            cp.slip
+        );
         checked += 1;
     }
     assert!(checked >= 6, "only {checked} points checked");
@@ -149,12 +174,24 @@ fn open_crack_costs_nothing_and_matches_no_contact() {
     let model = cdca::model::Model::new(s.clone());
     let x = model.discretise(model.initial_cracks());
     let f = cdca::loads::traction_forces(&x, &s.boundary);
-    let u = cdca::direct::Factor::new(&x, &[]).expect("factor").solve(&f).expect("solve");
+    let u = cdca::direct::Factor::new(&x, &[])
+        .expect("factor")
+        .solve(&f)
+        .expect("solve");
     let field = cdca::field::Field { xfem: &x, u: &u };
     for t in &r.tips {
         let frame = cdca::cracks::TipFrame::of(&x.funcs.cracks[t.crack], t.tip);
-        let plain = cdca::sif::tip_sifs(&field, t.crack, &frame, cdca::tips::DOMAIN_RADIUS * x.mesh.h(), &[]);
-        assert!(rel(t.k1, plain.k1) < 1e-10 && rel(t.k2, plain.k2) < 1e-10, "{t:?} vs {plain:?}");
+        let plain = cdca::sif::tip_sifs(
+            &field,
+            t.crack,
+            &frame,
+            cdca::tips::DOMAIN_RADIUS * x.mesh.h(),
+            &[],
+        );
+        assert!(
+            rel(t.k1, plain.k1) < 1e-10 && rel(t.k2, plain.k2) < 1e-10,
+            "{t:?} vs {plain:?}"
+        );
     }
 }
 
@@ -165,12 +202,19 @@ fn doubling_the_load_doubles_k() {
     let a = solve(biaxial(0.1, 0.32, 0.0, None, 10e6));
     let b = solve(biaxial(0.1, 0.32, 0.0, None, 20e6));
     for (x, y) in a.tips.iter().zip(&b.tips) {
-        assert!(rel(y.k2, 2.0 * x.k2) < 1e-8 && rel(y.k1, 2.0 * x.k1) < 1e-7, "{} {}", x.k2, y.k2);
+        assert!(
+            rel(y.k2, 2.0 * x.k2) < 1e-8 && rel(y.k1, 2.0 * x.k1) < 1e-7,
+            "{} {}",
+            x.k2,
+            y.k2
+        );
     }
 }
 
 fn finite(r: &SolveReport) -> bool {
-    r.tips.iter().all(|t| t.k1.is_finite() && t.k2.is_finite() && t.t_stress.is_finite())
+    r.tips
+        .iter()
+        .all(|t| t.k1.is_finite() && t.k2.is_finite() && t.t_stress.is_finite())
         && r.contact.residual.is_finite()
 }
 
@@ -185,16 +229,25 @@ fn stiff_and_extreme_cases_end_cleanly() {
     for alpha in [1.0, 1e2, 1e4, 1e6] {
         for mu in [0.0, 0.32, 10.0] {
             for p in [1.0, 10e6, 1e9] {
-                let mut sim = Simulation::new(biaxial(0.2, mu, 0.0, Some(alpha), p)).expect("valid");
+                let mut sim =
+                    Simulation::new(biaxial(0.2, mu, 0.0, Some(alpha), p)).expect("valid");
                 let r = sim.solve().expect("an explicit status, not an error");
                 assert!(finite(&r), "α {alpha} μ {mu} p {p}: {r:?}");
                 let exact = k2_exact(0.2, mu, 0.0, p);
                 let (tau, _) = resolved(0.2, p);
                 let k2 = r.tips[0].k2.abs();
-                let err = if exact > 0.0 { rel(k2, exact) } else { k2 / (tau * (PI * A).sqrt()) };
+                let err = if exact > 0.0 {
+                    rel(k2, exact)
+                } else {
+                    k2 / (tau * (PI * A).sqrt())
+                };
                 println!(
                     "{alpha:8.0e} {mu:6.2} {p:12.0e}   {:9} {:3} {:4}   {err:.4}",
-                    if r.contact.converged { "converged" } else { "NOT conv." },
+                    if r.contact.converged {
+                        "converged"
+                    } else {
+                        "NOT conv."
+                    },
                     r.contact.iterations,
                     r.contact.cycling
                 );
@@ -216,13 +269,23 @@ fn threshold_case_terminates() {
     let r = sim.solve().expect("explicit status");
     assert!(r.contact.iterations <= 50);
     assert!(finite(&r));
-    println!("threshold: converged {} iterations {} cycling {} stick {} slip {}", r.contact.converged, r.contact.iterations, r.contact.cycling, r.contact.stick, r.contact.slip);
+    println!(
+        "threshold: converged {} iterations {} cycling {} stick {} slip {}",
+        r.contact.converged,
+        r.contact.iterations,
+        r.contact.cycling,
+        r.contact.stick,
+        r.contact.slip
+    );
     let (tau, _) = resolved(k, 10e6);
-    assert!(r.tips.iter().all(|t| t.k2.abs() < 0.05 * tau * (PI * A).sqrt()));
+    assert!(
+        r.tips
+            .iter()
+            .all(|t| t.k2.abs() < 0.05 * tau * (PI * A).sqrt())
+    );
     let states: Vec<ContactState> = sim.contact_points().iter().map(|c| c.state).collect();
     assert!(states.iter().all(|s| *s != ContactState::Open));
 }
-
 
 /// The resumable relaxation (as the workbench drives it, a few sweeps per
 /// frame) ends at the same contact state and K as the one-call solve, for
@@ -230,7 +293,10 @@ fn threshold_case_terminates() {
 /// solver (1e-9).
 #[test]
 fn resumable_relaxation_matches_the_one_call_solve() {
-    for (kind, tol) in [(cdca::scene::SolverKind::Direct, 1e-9), (cdca::scene::SolverKind::Multigrid, 1e-6)] {
+    for (kind, tol) in [
+        (cdca::scene::SolverKind::Direct, 1e-9),
+        (cdca::scene::SolverKind::Multigrid, 1e-6),
+    ] {
         let mut s = biaxial_on(40, 0.1, 0.2, 0.0, None, 10e6);
         s.solver.kind = kind;
         let reference = solve(s.clone());
@@ -248,7 +314,10 @@ fn resumable_relaxation_matches_the_one_call_solve() {
         let history = sim.residual_history();
         assert!(history.len() >= 2 && history.windows(2).all(|w| w[1].iteration > w[0].iteration));
         for (a, b) in sim.tips().iter().zip(&reference.tips) {
-            assert!(rel(a.k2, b.k2) < tol && (a.k1 - b.k1).abs() < tol * b.k2.abs(), "{kind:?}: {a:?} vs {b:?}");
+            assert!(
+                rel(a.k2, b.k2) < tol && (a.k1 - b.k1).abs() < tol * b.k2.abs(),
+                "{kind:?}: {a:?} vs {b:?}"
+            );
         }
     }
 }

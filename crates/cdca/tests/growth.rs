@@ -30,7 +30,11 @@ fn mode_i_growth_is_straight_and_symmetric() {
     let da = 3.0 * 0.025;
     let mut sim = Simulation::new(s).expect("valid");
     run(&mut sim);
-    let grown: Vec<_> = sim.history().iter().flat_map(|st| st.grown.clone()).collect();
+    let grown: Vec<_> = sim
+        .history()
+        .iter()
+        .flat_map(|st| st.grown.clone())
+        .collect();
     assert!(grown.len() >= 4, "the crack grew {} times", grown.len());
     for g in &grown {
         assert!(g.angle_deg.abs() < 1.0, "angle {}", g.angle_deg);
@@ -47,7 +51,10 @@ fn mode_i_growth_is_straight_and_symmetric() {
 /// tips; MTS and the comprehensive criterion with Williams sampling agree.
 #[test]
 fn mixed_mode_kink_angle_is_erdogan_sih() {
-    for (kind, sampling) in [(CriterionKind::Mts, Sampling::Field), (CriterionKind::Comprehensive, Sampling::Williams)] {
+    for (kind, sampling) in [
+        (CriterionKind::Mts, Sampling::Field),
+        (CriterionKind::Comprehensive, Sampling::Williams),
+    ] {
         let mut s = plate(1.0, 1.0, 100, 100);
         tension_top_bottom(&mut s, 20e6);
         s.cracks.push(centre_crack(0.5 + 1e-4, 0.5, 0.05, 45.0));
@@ -58,7 +65,11 @@ fn mixed_mode_kink_angle_is_erdogan_sih() {
         let step = sim.grow_step().expect("step");
         assert_eq!(step.grown.len(), 2, "{kind:?}: both tips grow");
         for g in &step.grown {
-            assert!((g.angle_deg + 53.13).abs() < 3.0, "{kind:?} {sampling:?}: {}", g.angle_deg);
+            assert!(
+                (g.angle_deg + 53.13).abs() < 3.0,
+                "{kind:?} {sampling:?}: {}",
+                g.angle_deg
+            );
         }
         // the new segment leaves the old direction by that angle
         let c = &sim.cracks()[0];
@@ -86,8 +97,14 @@ fn wing_scene(n: usize, increment: Option<f64>) -> Scene {
     c.shear_stiffness = Some(20e9);
     s.cracks.push(c);
     s.boundary.bottom = SideBc::Roller;
-    s.boundary.top = SideBc::Traction { normal: -120e6, shear: 0.0 };
-    s.boundary.points = vec![PointSupport { at: [0.0, 0.0], fix: Fix::X }];
+    s.boundary.top = SideBc::Traction {
+        normal: -120e6,
+        shear: 0.0,
+    };
+    s.boundary.points = vec![PointSupport {
+        at: [0.0, 0.0],
+        fix: Fix::X,
+    }];
     s.criterion.r0 = Some(0.0009);
     s.growth.increment = increment;
     s.growth.load_steps = 10;
@@ -98,12 +115,17 @@ fn wing_scene(n: usize, increment: Option<f64>) -> Scene {
 /// The wing grown from tip 1 (upper end), as a polyline from the flaw tip.
 fn upper_wing(sim: &Simulation) -> Vec<[f64; 2]> {
     let c = &sim.cracks()[0];
-    let start = c.iter().position(|p| (p[0] - 0.015 - 0.003 / 2f64.sqrt()).abs() < 1e-9).expect("flaw tip");
+    let start = c
+        .iter()
+        .position(|p| (p[0] - 0.015 - 0.003 / 2f64.sqrt()).abs() < 1e-9)
+        .expect("flaw tip");
     c[start..].to_vec()
 }
 
 fn length(p: &[[f64; 2]]) -> f64 {
-    p.windows(2).map(|w| ((w[1][0] - w[0][0]).powi(2) + (w[1][1] - w[0][1]).powi(2)).sqrt()).sum()
+    p.windows(2)
+        .map(|w| ((w[1][0] - w[0][0]).powi(2) + (w[1][1] - w[0][1]).powi(2)).sqrt())
+        .sum()
 }
 
 /// Closed flaw under uniaxial compression: wing cracks start from both tips
@@ -114,7 +136,12 @@ fn length(p: &[[f64; 2]]) -> f64 {
 fn wing_cracks_curve_toward_the_load() {
     let mut sim = Simulation::new(wing_scene(100, None)).expect("valid");
     run(&mut sim);
-    let first: Vec<_> = sim.history().iter().flat_map(|s| s.grown.clone()).take(2).collect();
+    let first: Vec<_> = sim
+        .history()
+        .iter()
+        .flat_map(|s| s.grown.clone())
+        .take(2)
+        .collect();
     assert_eq!(first.len(), 2);
     for g in &first {
         assert!(g.angle_deg.abs() > 45.0 && g.mode == Mode::Tension, "{g:?}");
@@ -123,9 +150,15 @@ fn wing_cracks_curve_toward_the_load() {
     let wing = upper_wing(&sim);
     assert!(length(&wing) >= 0.006, "wing length {}", length(&wing));
     let n = wing.len();
-    let d = [wing[n - 1][0] - wing[n - 2][0], wing[n - 1][1] - wing[n - 2][1]];
+    let d = [
+        wing[n - 1][0] - wing[n - 2][0],
+        wing[n - 1][1] - wing[n - 2][1],
+    ];
     let from_vertical = d[0].atan2(d[1].abs()).to_degrees().abs();
-    assert!(from_vertical < 20.0, "last segment {from_vertical:.1}° from the load axis");
+    assert!(
+        from_vertical < 20.0,
+        "last segment {from_vertical:.1}° from the load axis"
+    );
     // every point inside the specimen; boundary tips are not free
     for p in c {
         assert!(p[0] >= -1e-12 && p[0] <= 0.03 + 1e-12 && p[1] >= -1e-12 && p[1] <= 0.03 + 1e-12);
@@ -153,7 +186,7 @@ fn wing_path_is_insensitive_to_mesh_and_increment() {
         let other = path(n, da);
         let d = hausdorff_prefix(&reference, &other, 0.004);
         println!("n = {n}, Δa = {da}: distance {:.3} h", d / h);
-        assert!(d < 2.0 * h, "n = {n}, Δa = {da}: paths {:.3e} m apart", d);
+        assert!(d < 2.0 * h, "n = {n}, Δa = {da}: paths {d:.3e} m apart");
     }
 }
 
@@ -166,9 +199,12 @@ fn hausdorff_prefix(a: &[[f64; 2]], b: &[[f64; 2]], len: f64) -> f64 {
         for w in p.windows(2) {
             let l = ((w[1][0] - w[0][0]).powi(2) + (w[1][1] - w[0][1]).powi(2)).sqrt();
             for k in 0..10 {
-                let t = k as f64 / 10.0;
+                let t = f64::from(k) / 10.0;
                 if s + t * l <= len {
-                    out.push(cdca::geometry::P2::new(w[0][0] + t * (w[1][0] - w[0][0]), w[0][1] + t * (w[1][1] - w[0][1])));
+                    out.push(cdca::geometry::P2::new(
+                        w[0][0] + t * (w[1][0] - w[0][0]),
+                        w[0][1] + t * (w[1][1] - w[0][1]),
+                    ));
                 }
             }
             s += l;
@@ -178,10 +214,18 @@ fn hausdorff_prefix(a: &[[f64; 2]], b: &[[f64; 2]], len: f64) -> f64 {
     let to_pts = |p: &[[f64; 2]]| p.iter().map(|q| cdca::geometry::p2(*q)).collect::<Vec<_>>();
     let (pa, pb) = (to_pts(a), to_pts(b));
     let dist = |x: cdca::geometry::P2, poly: &[cdca::geometry::P2]| {
-        poly.windows(2).map(|w| cdca::geometry::distance_to_segment(x, w[0], w[1])).fold(f64::INFINITY, f64::min)
+        poly.windows(2)
+            .map(|w| cdca::geometry::distance_to_segment(x, w[0], w[1]))
+            .fold(f64::INFINITY, f64::min)
     };
-    let ab = sample(a).into_iter().map(|x| dist(x, &pb)).fold(0.0, f64::max);
-    let ba = sample(b).into_iter().map(|x| dist(x, &pa)).fold(0.0, f64::max);
+    let ab = sample(a)
+        .into_iter()
+        .map(|x| dist(x, &pb))
+        .fold(0.0, f64::max);
+    let ba = sample(b)
+        .into_iter()
+        .map(|x| dist(x, &pa))
+        .fold(0.0, f64::max);
     ab.max(ba)
 }
 
@@ -209,7 +253,10 @@ fn stepped_flaws_coalesce() {
 #[test]
 fn initial_angle_falls_with_confinement_and_friction() {
     let first = |name: &str| -> Option<(f64, Mode)> {
-        let path = format!("{}/../../assets/scenes/{name}.json", env!("CARGO_MANIFEST_DIR"));
+        let path = format!(
+            "{}/../../assets/scenes/{name}.json",
+            env!("CARGO_MANIFEST_DIR")
+        );
         let text = std::fs::read_to_string(path).expect("scene file");
         let mut sim = Simulation::new(Scene::from_json(&text).expect("scene")).expect("valid");
         while sim.growth_finished().is_none() {
@@ -236,7 +283,10 @@ fn initial_angle_falls_with_confinement_and_friction() {
     // falls: each angle below the previous, or no initiation at all
     for seq in [&by_k, &by_mu] {
         let angles: Vec<f64> = seq.iter().map(|r| r.map_or(0.0, |(a, _)| a)).collect();
-        assert!(angles[0] > 0.0, "the least confined case initiates: {angles:?}");
+        assert!(
+            angles[0] > 0.0,
+            "the least confined case initiates: {angles:?}"
+        );
         for w in angles.windows(2) {
             assert!(w[1] <= w[0], "angles must fall: {angles:?}");
         }
@@ -261,6 +311,9 @@ fn element_reuse_after_growth_matches_a_fresh_build() {
     let fresh = solve(sim.scene().clone());
     assert_eq!(grown.tips.len(), fresh.tips.len());
     for (a, b) in grown.tips.iter().zip(&fresh.tips) {
-        assert!(rel(a.k1, b.k1) < 1e-10 && (a.k2 - b.k2).abs() < 1e-10 * b.k1.abs(), "{a:?} vs {b:?}");
+        assert!(
+            rel(a.k1, b.k1) < 1e-10 && (a.k2 - b.k2).abs() < 1e-10 * b.k1.abs(),
+            "{a:?} vs {b:?}"
+        );
     }
 }

@@ -15,7 +15,10 @@ fn centre_crack_k1(n: usize) -> (f64, f64, Vec<f64>) {
     s.cracks.push(centre_crack(0.5, 1.5, 0.15, 0.0));
     let r = solve(s);
     let al: f64 = 0.3;
-    let exact = 1e6 * (PI * 0.15f64).sqrt() * (1.0 - 0.025 * al * al + 0.06 * al.powi(4)) * (1.0 / (PI * al / 2.0).cos()).sqrt();
+    let exact = 1e6
+        * (PI * 0.15f64).sqrt()
+        * (1.0 - 0.025 * al * al + 0.06 * al.powi(4))
+        * (1.0 / (PI * al / 2.0).cos()).sqrt();
     let k: Vec<f64> = r.tips.iter().map(|t| t.k1).collect();
     (k.iter().sum::<f64>() / k.len() as f64, exact, k)
 }
@@ -27,7 +30,10 @@ fn centre_crack_tension_matches_tada() {
         let (_, exact, k) = centre_crack_k1(n);
         assert_eq!(k.len(), 2);
         for k1 in k {
-            assert!(rel(k1, exact) < tol, "n = {n}: K_I = {k1:.6e}, Tada {exact:.6e}");
+            assert!(
+                rel(k1, exact) < tol,
+                "n = {n}: K_I = {k1:.6e}, Tada {exact:.6e}"
+            );
         }
     }
 }
@@ -38,10 +44,17 @@ fn edge_crack_tension_matches_tada() {
     let mut s = plate(1.0, 2.0, 80, 160);
     tension_top_bottom(&mut s, 1e6);
     s.boundary.points = vec![
-        cdca::scene::PointSupport { at: [1.0, 1.0], fix: cdca::scene::Fix::Xy },
-        cdca::scene::PointSupport { at: [1.0, 2.0], fix: cdca::scene::Fix::X },
+        cdca::scene::PointSupport {
+            at: [1.0, 1.0],
+            fix: cdca::scene::Fix::Xy,
+        },
+        cdca::scene::PointSupport {
+            at: [1.0, 2.0],
+            fix: cdca::scene::Fix::X,
+        },
     ];
-    s.cracks.push(cdca::scene::CrackSpec::segment([0.0, 1.0], [0.5, 1.0]));
+    s.cracks
+        .push(cdca::scene::CrackSpec::segment([0.0, 1.0], [0.5, 1.0]));
     let r = solve(s);
     assert_eq!(r.tips.len(), 1, "the boundary end is not a tip");
     let f = r.tips[0].k1 / (1e6 * (PI * 0.5f64).sqrt());
@@ -61,11 +74,23 @@ fn inclined_crack_mixed_mode_and_t_stress() {
         let b = beta.to_radians();
         let k0 = 1e6 * (PI * 0.05f64).sqrt();
         for t in &r.tips {
-            assert!(rel(t.k1, k0 * b.cos().powi(2)) < 0.03, "β {beta}: K_I {:.4e}", t.k1);
-            assert!(rel(t.k2.abs(), k0 * b.sin() * b.cos()) < 0.03, "β {beta}: K_II {:.4e}", t.k2);
+            assert!(
+                rel(t.k1, k0 * b.cos().powi(2)) < 0.03,
+                "β {beta}: K_I {:.4e}",
+                t.k1
+            );
+            assert!(
+                rel(t.k2.abs(), k0 * b.sin() * b.cos()) < 0.03,
+                "β {beta}: K_II {:.4e}",
+                t.k2
+            );
             if beta == 30.0 {
                 let exact = -1e6 * (2.0 * b).cos();
-                assert!(rel(t.t_stress, exact) < 0.10, "T {:.4e} vs {exact:.4e}", t.t_stress);
+                assert!(
+                    rel(t.t_stress, exact) < 0.10,
+                    "T {:.4e} vs {exact:.4e}",
+                    t.t_stress
+                );
             }
         }
     }
@@ -78,18 +103,26 @@ fn inclined_crack_mixed_mode_and_t_stress() {
 /// observed rate between the first and last mesh is at least 0.5.
 #[test]
 fn centre_crack_error_converges() {
-    let k: Vec<f64> = [20, 40, 80, 160].iter().map(|&n| centre_crack_k1(n).0).collect();
+    let k: Vec<f64> = [20, 40, 80, 160]
+        .iter()
+        .map(|&n| centre_crack_k1(n).0)
+        .collect();
     let (_, tada, _) = centre_crack_k1(10);
     let (d1, d2) = (k[2] - k[1], k[3] - k[2]);
     let k_inf = k[3] - d2 * d2 / (d2 - d1);
-    assert!(rel(k_inf, tada) < 0.005, "converged {k_inf:.6e} vs Tada {tada:.6e}");
+    assert!(
+        rel(k_inf, tada) < 0.005,
+        "converged {k_inf:.6e} vs Tada {tada:.6e}"
+    );
     let errs: Vec<f64> = k.iter().map(|&v| rel(v, k_inf)).collect();
     for w in errs.windows(2) {
         assert!(w[1] < w[0], "errors {errs:?} must fall (K = {k:?})");
     }
     let rate = (errs[0] / errs[3]).ln() / 8f64.ln();
     assert!(rate >= 0.5, "observed rate {rate:.2} from {errs:?}");
-    println!("K_I = {k:?}, converged {k_inf:.6e}, Tada {tada:.6e}, errors {errs:?}, rate {rate:.2}");
+    println!(
+        "K_I = {k:?}, converged {k_inf:.6e}, Tada {tada:.6e}, errors {errs:?}, rate {rate:.2}"
+    );
 }
 
 /// The interaction integral is path independent: K_I changes by less than
@@ -102,9 +135,15 @@ fn interaction_integral_is_path_independent() {
     let mut sim = Simulation::new(s).expect("valid");
     sim.solve().expect("solve");
     let x = sim.xfem();
-    let f = cdca::field::Field { xfem: x, u: sim.displacement() };
+    let f = cdca::field::Field {
+        xfem: x,
+        u: sim.displacement(),
+    };
     let frame = cdca::cracks::TipFrame::of(&x.funcs.cracks[0], 1);
     let k = |r: f64| cdca::sif::tip_sifs(&f, 0, &frame, r * x.mesh.h(), &[]).k1;
     let (k2, k4) = (k(2.0), k(4.0));
-    assert!(rel(k2, k4) < 0.005, "K_I(2h) = {k2:.5e}, K_I(4h) = {k4:.5e}");
+    assert!(
+        rel(k2, k4) < 0.005,
+        "K_I(2h) = {k2:.5e}, K_I(4h) = {k4:.5e}"
+    );
 }

@@ -1,11 +1,12 @@
 //! Scene builders and a one-call solve shared by the verification tests.
 #![allow(dead_code)]
 
+use cdca::Simulation;
 use cdca::report::SolveReport;
 use cdca::scene::{
-    Boundary, CrackSpec, Fix, Material, MeshSpec, Plane, PointSupport, Scene, SideBc, Specimen,
+    Boundary, CrackSpec, CriterionSpec, Fix, GrowthSpec, Material, MeshSpec, Plane, PointSupport,
+    Scene, SideBc, SolverSpec, Specimen,
 };
-use cdca::Simulation;
 
 pub const PI: f64 = std::f64::consts::PI;
 
@@ -14,8 +15,16 @@ pub fn plate(w: f64, h: f64, nx: usize, ny: usize) -> Scene {
     Scene {
         name: "test".into(),
         description: String::new(),
-        specimen: Specimen { width: w, height: h, thickness: 1.0 },
-        mesh: MeshSpec { nx, ny, enrichment_radius: None },
+        specimen: Specimen {
+            width: w,
+            height: h,
+            thickness: 1.0,
+        },
+        mesh: MeshSpec {
+            nx,
+            ny,
+            enrichment_radius: None,
+        },
         material: Material {
             young: 200e9,
             poisson: 0.3,
@@ -34,9 +43,9 @@ pub fn plate(w: f64, h: f64, nx: usize, ny: usize) -> Scene {
             right: SideBc::Free,
             points: Vec::new(),
         },
-        criterion: Default::default(),
-        growth: Default::default(),
-        solver: Default::default(),
+        criterion: CriterionSpec::default(),
+        growth: GrowthSpec::default(),
+        solver: SolverSpec::default(),
     }
 }
 
@@ -44,11 +53,23 @@ pub fn plate(w: f64, h: f64, nx: usize, ny: usize) -> Scene {
 /// points at mid-height of the left and right sides.
 pub fn tension_top_bottom(scene: &mut Scene, s: f64) {
     let (w, h) = (scene.specimen.width, scene.specimen.height);
-    scene.boundary.top = SideBc::Traction { normal: s, shear: 0.0 };
-    scene.boundary.bottom = SideBc::Traction { normal: s, shear: 0.0 };
+    scene.boundary.top = SideBc::Traction {
+        normal: s,
+        shear: 0.0,
+    };
+    scene.boundary.bottom = SideBc::Traction {
+        normal: s,
+        shear: 0.0,
+    };
     scene.boundary.points = vec![
-        PointSupport { at: [0.0, 0.5 * h], fix: Fix::Xy },
-        PointSupport { at: [w, 0.5 * h], fix: Fix::Y },
+        PointSupport {
+            at: [0.0, 0.5 * h],
+            fix: Fix::Xy,
+        },
+        PointSupport {
+            at: [w, 0.5 * h],
+            fix: Fix::Y,
+        },
     ];
 }
 

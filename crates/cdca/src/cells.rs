@@ -235,3 +235,35 @@ fn sweep_order(topo: &Mesh, nodes: &[u32], ordering: Ordering) -> Vec<u32> {
     }
     order
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Four-colour ordering: nodes of one colour never share an element,
+    /// so their updates commute (the property red–black ordering needs).
+    #[test]
+    fn same_colour_nodes_share_no_element() {
+        let m = Mesh::new(1.0, 1.0, 5, 4);
+        let nodes: Vec<u32> = (0..m.node_count() as u32).collect();
+        let order = sweep_order(&m, &nodes, Ordering::RedBlack);
+        assert_eq!(order.len(), m.node_count());
+        let colour = |n: usize| {
+            let (i, j) = m.node_ij(n);
+            (i % 2) + 2 * (j % 2)
+        };
+        let colours: Vec<usize> = order.iter().map(|&c| colour(c as usize)).collect();
+        assert!(
+            colours.windows(2).all(|w| w[0] <= w[1]),
+            "colours are not contiguous"
+        );
+        for e in 0..m.element_count() {
+            let c: Vec<usize> = m.element_nodes(e).iter().map(|&n| colour(n)).collect();
+            for a in 0..4 {
+                for b in a + 1..4 {
+                    assert_ne!(c[a], c[b], "element {e} has two nodes of one colour");
+                }
+            }
+        }
+    }
+}

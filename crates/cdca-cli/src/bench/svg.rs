@@ -167,7 +167,7 @@ fn panel(s: &mut String, runs: &[&Run], scene: &str, size: usize, x0: f64) {
                 pts.join(" ")
             );
         }
-        let ly = top + 16.0 + 16.0 * k as f64;
+        let ly = bottom - 16.0 * (runs.len() - k) as f64; // lower left: empty on these plots
         let _ = writeln!(
             s,
             r#"<line x1="{}" y1="{ly}" x2="{}" y2="{ly}" stroke="{c}" stroke-width="2"/>"#,

@@ -164,3 +164,42 @@ fn regularise(kc: &mut DMatrix<f64>, layout: &[LocalDof]) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::coarsen::coarsen;
+    use super::*;
+    use crate::model::Model;
+    use crate::scene::Scene;
+
+    fn plate(n: usize) -> Xfem {
+        let json = format!(
+            r#"{{"specimen":{{"width":2.0,"height":1.0}},"mesh":{{"nx":{n},"ny":{n}}},
+            "material":{{"young":1e9,"poisson":0.3}}}}"#
+        );
+        let model = Model::new(Scene::from_json(&json).expect("scene"));
+        model.discretise(model.initial_cracks())
+    }
+
+    /// For bilinear elements the Galerkin coarse matrix of four ordinary
+    /// elements is the Q4 stiffness of the element twice as large
+    /// (bilinear prolongation is exact for bilinear functions).
+    #[test]
+    fn shared_coarse_matrix_is_the_q4_stiffness_of_the_double_element() {
+        let fine = plate(8);
+        let op = ElementOperator::from_xfem(&fine, &[]);
+        let (_, _, opc) = coarsen(&fine, &Grid::fine(&fine), &op);
+        let coarse = plate(4);
+        let k2h = coarse.k0.as_slice();
+        let scale = k2h.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let diff = opc
+            .matrix(0)
+            .iter()
+            .zip(k2h)
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(
+            diff <= 1e-12 * scale,
+            "differs by {diff:e} (scale {scale:e})"
+        );
+    }
+}

@@ -171,13 +171,13 @@ fn panel(s: &mut String, runs: &[&Run], scene: &str, size: usize, x0: f64) {
         let _ = writeln!(
             s,
             r#"<line x1="{}" y1="{ly}" x2="{}" y2="{ly}" stroke="{c}" stroke-width="2"/>"#,
-            r - 150.0,
-            r - 125.0
+            l + 12.0,
+            l + 37.0
         );
         let _ = writeln!(
             s,
             r#"<text x="{}" y="{}">{}</text>"#,
-            r - 120.0,
+            l + 42.0,
             ly + 4.0,
             run.solver
         );

@@ -279,7 +279,7 @@ impl Canvas {
         let scene = input.scene;
         let wants_field = s.field != FieldKind::None || s.deformed;
         let field = input.field.filter(|_| wants_field && input.solution.solved);
-        symbols::paint_outline(painter, &view, scene, field.is_none());
+        symbols::paint_outline(painter, &view, scene, true);
         if let Some(samples) = field {
             self.deform_scale_used = if s.deformed {
                 s.deform_scale

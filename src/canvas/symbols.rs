@@ -181,13 +181,27 @@ pub fn paint_boundary(painter: &Painter, view: &ViewTransform, scene: &Scene) {
                         );
                     }
                 }
-                let mid = pa + (pb - pa) * 0.5 + out * (len + 24.0);
                 let label = match (normal != 0.0, shear != 0.0) {
                     (true, true) => format!("σ_n {}, τ {}", units::mpa(normal), units::mpa(shear)),
                     (false, true) => format!("τ {}", units::mpa(shear)),
                     _ => format!("σ_n {}", units::mpa(normal)),
                 };
-                painter.text(mid, Align2::CENTER_CENTER, label, font.clone(), LOAD_COLOR);
+                // Beside the arrows: above a horizontal side, between two
+                // arrows and past their tails on a vertical one.
+                let (at_label, align) = if side.outward[0] == 0.0 {
+                    (
+                        pa + (pb - pa) * 0.5 + out * (len + 24.0),
+                        Align2::CENTER_CENTER,
+                    )
+                } else {
+                    let align = if side.outward[0] > 0.0 {
+                        Align2::LEFT_CENTER
+                    } else {
+                        Align2::RIGHT_CENTER
+                    };
+                    (pa + (pb - pa) * (5.0 / n as f32) + out * (len + 8.0), align)
+                };
+                painter.text(at_label, align, label, font.clone(), LOAD_COLOR);
             }
         }
     }

@@ -47,7 +47,7 @@ pub fn quantity_row(
                 .speed(speed)
                 .range(range)
                 .suffix(suffix)
-                .max_decimals(6),
+                .custom_formatter(|v, _| crate::units::significant(v)),
         )
         .labelled_by(l.id);
     if r.changed() {

@@ -78,15 +78,8 @@ pub fn solve_with_contact(
         info.linear_iterations += lin.iterations;
         info.last = lin;
         let changed = update_states(x, u, committed, &mut states, &mut tracker, params);
-        let du: f64 = u
-            .iter()
-            .zip(&before)
-            .map(|(a, b)| (a - b) * (a - b))
-            .sum::<f64>()
-            .sqrt();
-        let nu: f64 = u.iter().map(|a| a * a).sum::<f64>().sqrt();
         info.iterations = it;
-        info.residual = if nu > 0.0 { du / nu } else { du };
+        info.residual = relative_change(u, &before);
         if !info.residual.is_finite() {
             return Err(SolveError::NonFinite {
                 place: format!("contact iteration {it}"),
@@ -155,6 +148,19 @@ pub fn update_states(
         states[i] = new;
     }
     changed
+}
+
+/// `‖a − b‖ / ‖a‖` (or `‖a − b‖` when a = 0): the contact iteration's
+/// convergence measure.
+pub fn relative_change(a: &[f64], b: &[f64]) -> f64 {
+    let d: f64 = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt();
+    let n: f64 = a.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if n > 0.0 { d / n } else { d }
 }
 
 /// Whether any point slips (its friction force then follows the iterate).

@@ -6,7 +6,8 @@ use web_time::Instant;
 use crate::assembly::ElementBlock;
 use crate::contact::{FaceState, carry_over, contact_system, counts};
 use crate::contact_loop::{
-    ContactInfo, ContactParams, FlipTracker, any_slip, solve_with_contact, update_states,
+    ContactInfo, ContactParams, FlipTracker, any_slip, relative_change, solve_with_contact,
+    update_states,
 };
 use crate::cracks::{Crack, TipKind, classify_tips};
 use crate::criterion::{Circle, CriterionParams};
@@ -63,18 +64,6 @@ pub struct CriterionCurve {
     pub sigma_t: f64,
     /// r0, m.
     pub r0: f64,
-}
-
-/// `‖a − b‖ / ‖a‖` (or `‖a − b‖` when a = 0).
-fn relative_change(a: &[f64], b: &[f64]) -> f64 {
-    let d: f64 = a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| (x - y) * (x - y))
-        .sum::<f64>()
-        .sqrt();
-    let n: f64 = a.iter().map(|x| x * x).sum::<f64>().sqrt();
-    if n > 0.0 { d / n } else { d }
 }
 
 /// One sample of an iterative solve's progress.

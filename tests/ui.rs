@@ -245,6 +245,10 @@ fn panels_show_only_what_the_scene_can_use() {
 // --- with the solver -------------------------------------------------------
 
 #[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
 fn default_scene_opens_solved_and_a_tip_can_be_inspected() {
     let mut h = harness(Options::default());
     h.run_steps(20);
@@ -292,6 +296,10 @@ fn step_grows_the_residual_history() {
 }
 
 #[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
 fn grow_makes_the_crack_longer() {
     let mut h = harness(Options::default());
     h.run_steps(5);

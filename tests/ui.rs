@@ -271,7 +271,6 @@ fn default_scene_opens_solved_and_a_tip_can_be_inspected() {
 }
 
 #[test]
-#[ignore = "needs a resumable Simulation::relax (today each call is a full solve that replaces the history)"]
 fn step_grows_the_residual_history() {
     let mut h = harness(Options::default());
     h.run_steps(5);

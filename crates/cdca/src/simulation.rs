@@ -37,6 +37,8 @@ pub enum ContactState {
 /// A crack-face integration point as the UI shows it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ContactPointView {
+    /// Index of the crack in the scene's `cracks`.
+    pub crack: usize,
     /// Position, m.
     pub x: f64,
     pub y: f64,
@@ -45,7 +47,9 @@ pub struct ContactPointView {
     pub state: ContactState,
     /// Normal traction p_N, Pa (≤ 0 in contact).
     pub p_n: f64,
-    /// Tangential traction p_T, Pa.
+    /// Tangential traction p_T, Pa, along `t = (n_y, −n_x)` (the crack's
+    /// direction). The traction acting on the φ > 0 face is
+    /// `−(p_N n + p_T t)`, on the φ < 0 face `+(p_N n + p_T t)`.
     pub p_t: f64,
     /// Tangential gap (slip) g_T, m.
     pub slip: f64,
@@ -670,6 +674,7 @@ impl Simulation {
             .iter()
             .zip(&self.state.faces)
             .map(|(fp, s)| ContactPointView {
+                crack: fp.crack,
                 x: fp.x.x,
                 y: fp.x.y,
                 normal: [fp.n.x, fp.n.y],

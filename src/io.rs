@@ -82,7 +82,6 @@ pub use web::{read_dropped_later, set_repaint_context, take_opened};
 /// Starts the browser's file picker; the file arrives through
 /// [`take_opened`] a few frames later. Always `Ok(None)` now.
 #[cfg(target_arch = "wasm32")]
-#[expect(clippy::unnecessary_wraps, reason = "same signature as natively")]
 pub fn open_scene_dialog() -> Result<Option<OpenedFile>, String> {
     wasm_bindgen_futures::spawn_local(async {
         let picked = rfd::AsyncFileDialog::new()
@@ -99,15 +98,6 @@ pub fn open_scene_dialog() -> Result<Option<OpenedFile>, String> {
         }
     });
     Ok(None)
-}
-
-/// There is no file system in the browser.
-#[cfg(target_arch = "wasm32")]
-pub fn read_text(path: &std::path::Path) -> Result<OpenedFile, String> {
-    Err(format!(
-        "cannot read {}: no file system in the browser",
-        path.display()
-    ))
 }
 
 /// Dropped files can only be read asynchronously in the browser: the web
@@ -218,6 +208,15 @@ mod web {
         anchor.set_href(&url);
         anchor.set_download(name);
         anchor.click();
-        web_sys::Url::revoke_object_url(&url).map_err(js)
+        // Give the browser a moment to start the download before the URL
+        // goes away.
+        let revoke = wasm_bindgen::closure::Closure::once_into_js(move || {
+            let _ = web_sys::Url::revoke_object_url(&url);
+        });
+        web_sys::window()
+            .ok_or("no window")?
+            .set_timeout_with_callback_and_timeout_and_arguments_0(revoke.unchecked_ref(), 1000)
+            .map_err(js)?;
+        Ok(())
     }
 }

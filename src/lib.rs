@@ -17,6 +17,8 @@ mod runner;
 pub mod scenes;
 mod solution;
 mod units;
+#[cfg(target_arch = "wasm32")]
+pub mod web;
 
 pub use app::{Options, WorkbenchApp};
 pub use command::Command;

@@ -1,8 +1,6 @@
-//! The CDCA workbench: native window (and, later, the browser).
+//! The CDCA workbench: native window, or the browser (WebAssembly).
 
 #![cfg_attr(not(debug_assertions), windows_subsystem = "windows")]
-
-use cdca_workbench::WorkbenchApp;
 
 #[cfg(not(target_arch = "wasm32"))]
 fn main() -> eframe::Result {
@@ -16,13 +14,80 @@ fn main() -> eframe::Result {
     eframe::run_native(
         "cdca-workbench",
         options,
-        Box::new(|cc| Ok(Box::new(WorkbenchApp::from_creation_context(cc)))),
+        Box::new(|cc| {
+            Ok(Box::new(
+                cdca_workbench::WorkbenchApp::from_creation_context(cc),
+            ))
+        }),
     )
 }
 
-/// The web build (a later task adds `wasm-bindgen-futures` and `web-sys`
-/// and starts an `eframe::WebRunner` on the page's canvas here).
+/// The web build: logs to the browser console, starts the app on the
+/// page's `<canvas id="cdca_canvas">`, and replaces the page's loading
+/// note with a visible message if the start fails or the app panics
+/// (instead of leaving a blank page).
 #[cfg(target_arch = "wasm32")]
 fn main() {
-    let _ = WorkbenchApp::from_creation_context;
+    use eframe::wasm_bindgen::JsCast as _;
+
+    if eframe::WebLogger::init(log::LevelFilter::Info).is_err() {
+        web_sys::console::warn_1(&"no console logger".into());
+    }
+    let runner = eframe::WebRunner::new();
+    // After `WebRunner::new`, so eframe's hook (which logs to the console)
+    // still runs first.
+    let previous_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        previous_hook(info);
+        show_status(&format!("The workbench stopped: {info}"), true);
+    }));
+    wasm_bindgen_futures::spawn_local(async move {
+        let Some(canvas) = web_sys::window()
+            .and_then(|w| w.document())
+            .and_then(|d| d.get_element_by_id("cdca_canvas"))
+            .and_then(|e| e.dyn_into::<web_sys::HtmlCanvasElement>().ok())
+        else {
+            show_status("The page has no <canvas id=\"cdca_canvas\">.", true);
+            return;
+        };
+        let started = runner
+            .start(
+                canvas,
+                eframe::WebOptions::default(),
+                Box::new(|cc| Ok(Box::new(cdca_workbench::web::WebApp::new(cc)))),
+            )
+            .await;
+        match started {
+            Ok(()) => show_status("", false),
+            Err(e) => {
+                log::error!("failed to start: {e:?}");
+                show_status(
+                    &format!(
+                        "The workbench could not start: {}. It needs WebGL 2; see the browser console for details.",
+                        e.as_string().unwrap_or_else(|| format!("{e:?}"))
+                    ),
+                    true,
+                );
+            }
+        }
+    });
+}
+
+/// Shows `text` in the page's `#cdca_status` element (as an error when
+/// `error`), or hides it when `text` is empty.
+#[cfg(target_arch = "wasm32")]
+fn show_status(text: &str, error: bool) {
+    let Some(status) = web_sys::window()
+        .and_then(|w| w.document())
+        .and_then(|d| d.get_element_by_id("cdca_status"))
+    else {
+        return;
+    };
+    status.set_text_content(Some(text));
+    let class = match (text.is_empty(), error) {
+        (true, _) => "hidden",
+        (false, true) => "error",
+        (false, false) => "",
+    };
+    let _ = status.set_attribute("class", class);
 }

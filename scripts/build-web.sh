@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# Builds the workbench for the browser into dist/ (a static site: index.html,
+# cdca-workbench.js, cdca-workbench_bg.wasm) on a Debian 12 machine without
+# rustup's wasm target, installing what it needs:
+#   - Debian's rustc-web (a rustc with the WebAssembly backend), the matching
+#     std sources (rust-web-src) and wasm-ld (lld-22); std is built from
+#     source with -Zbuild-std;
+#   - wasm-bindgen-cli at the version Cargo.lock pins (cargo install).
+# wasm-opt is not run: Debian's binaryen 108 produces output Chromium rejects.
+#
+# With rustup's wasm32 target, `trunk build --release` does the same (see the
+# README, "Browser build").
+#
+# Usage: scripts/build-web.sh        (serve with:
+#        python3 -m http.server -b 127.0.0.1 -d dist 8080)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+app=cdca-workbench
+profile=web # Cargo.toml [profile.web]: release + LTO, for a smaller bundle
+wasm_ld=/usr/lib/llvm-22/bin/wasm-ld
+packages=(rustc-web cargo-web rust-web-src lld-22)
+
+step() { printf '\n== %s (%ds)\n' "$1" "$SECONDS"; }
+
+# --- 1. Debian packages ------------------------------------------------------
+missing=()
+for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+if ((${#missing[@]})); then
+    step "apt-get install ${missing[*]}"
+    sudo=()
+    [ "$(id -u)" -eq 0 ] || sudo=(sudo)
+    "${sudo[@]}" apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq "${missing[@]}"
+fi
+
+# --- 2. wasm-bindgen-cli matching the wasm-bindgen crate ---------------------
+if ! command -v cargo >/dev/null 2>&1 && [ -f "$HOME/.cargo/env" ]; then
+    # shellcheck source=/dev/null
+    . "$HOME/.cargo/env"
+fi
+bindgen_version=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/[^0-9.]/, ""); print; exit }' Cargo.lock)
+[ -n "$bindgen_version" ] || { echo "no wasm-bindgen in Cargo.lock" >&2; exit 1; }
+export PATH="$HOME/.cargo/bin:$PATH"
+if [ "$(wasm-bindgen --version 2>/dev/null | awk '{ print $2 }')" != "$bindgen_version" ]; then
+    step "cargo install wasm-bindgen-cli $bindgen_version"
+    # Not --locked: the registry index lacks one of its pinned dependencies.
+    cargo install wasm-bindgen-cli --version "$bindgen_version"
+fi
+
+# --- 3. The wasm build -------------------------------------------------------
+# RUSTC etc. only for this command: exported, they would switch native
+# builds to Debian's compiler.
+step "cargo build --target wasm32-unknown-unknown --profile $profile"
+RUSTC=/usr/bin/rustc RUSTDOC=/usr/bin/rustdoc RUSTC_BOOTSTRAP=1 \
+    CARGO_TARGET_DIR=target-web \
+    CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_LINKER="$wasm_ld" \
+    /usr/bin/cargo build --target wasm32-unknown-unknown --profile "$profile" \
+    -Zbuild-std=std,panic_abort --bin "$app"
+
+# --- 4. JS bindings and the page ---------------------------------------------
+step "wasm-bindgen"
+rm -rf dist
+mkdir -p dist
+# Without the name section (function names, ~0.6 MiB): panics still show
+# their message in the console, with fewer names in the stack trace.
+wasm-bindgen --target web --no-typescript --remove-name-section \
+    --out-dir dist --out-name "$app" \
+    "target-web/wasm32-unknown-unknown/$profile/$app.wasm"
+# index.html serves trunk and this script: drop trunk's <link data-trunk>
+# lines and load the bindings ourselves.
+loader="<script type=\"module\">import init from \"./$app.js\"; init().catch((e) => window.cdcaLoadFailed(e));</script>"
+sed -e '/data-trunk/d' -e "s#<!-- build-web.sh: loader -->#$loader#" index.html >dist/index.html
+grep -q "import init" dist/index.html || { echo "index.html lacks the loader marker" >&2; exit 1; }
+
+wasm_bytes=$(stat -c %s "dist/${app}_bg.wasm")
+gz_bytes=$(gzip -9 -c "dist/${app}_bg.wasm" | wc -c)
+step "done"
+awk -v a="$app" -v w="$wasm_bytes" -v g="$gz_bytes" \
+    'BEGIN { printf "dist/%s_bg.wasm: %.2f MiB (%.2f MiB gzipped)\n", a, w / 1048576, g / 1048576 }'
+echo "serve with: python3 -m http.server -b 127.0.0.1 -d dist 8080"

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Browser test of the WebAssembly build: builds dist/ (scripts/build-web.sh),
+# serves it on 127.0.0.1, opens it in headless Chromium (Debian's chromium,
+# driven by playwright-core from npm; no browser download), waits for the
+# canvas and the solved default scene, clicks Step and "Grow one step",
+# saves a screenshot and fails on any console error or panic message
+# (tests/web/smoke.mjs).
+#
+#   bash scripts/test-web.sh [--no-build] [SCREENSHOT]
+#       SCREENSHOT defaults to target-web/web-screenshot.png; the app's
+#       solve and frame timings go next to it (web-timings.txt).
+#
+# Installs what it needs: chromium (apt-get), playwright-core (npm ci).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build=1
+if [ "${1:-}" = "--no-build" ]; then
+    build=0
+    shift
+fi
+screenshot="${1:-target-web/web-screenshot.png}"
+mkdir -p "$(dirname "$screenshot")"
+timings="$(dirname "$screenshot")/web-timings.txt"
+
+step() { printf '\n== %s (%ds)\n' "$1" "$SECONDS"; }
+
+if ((build)); then
+    bash scripts/build-web.sh
+fi
+[ -f dist/index.html ] || { echo "no dist/: run scripts/build-web.sh" >&2; exit 1; }
+
+if ! command -v chromium >/dev/null 2>&1 || ! command -v node >/dev/null 2>&1; then
+    step "apt-get install chromium nodejs npm"
+    sudo=()
+    [ "$(id -u)" -eq 0 ] || sudo=(sudo)
+    "${sudo[@]}" apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq chromium nodejs npm
+fi
+if [ ! -d tests/web/node_modules/playwright-core ]; then
+    step "npm ci (playwright-core)"
+    (cd tests/web && npm ci --no-audit --no-fund)
+fi
+
+# A free port on 127.0.0.1, and a server that goes away with this script.
+port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+python3 -m http.server -b 127.0.0.1 -d dist "$port" >/dev/null 2>&1 &
+server=$!
+trap 'kill "$server" 2>/dev/null || true' EXIT
+python3 - "$port" <<'PY'
+import sys, time, urllib.request
+for _ in range(100):
+    try:
+        urllib.request.urlopen(f"http://127.0.0.1:{sys.argv[1]}/", timeout=1)
+        break
+    except OSError:
+        time.sleep(0.1)
+PY
+
+step "headless Chromium on http://127.0.0.1:$port/"
+node tests/web/smoke.mjs "http://127.0.0.1:$port/" "$screenshot" "$timings"
+step "done"

@@ -114,10 +114,20 @@ impl Runner {
         self.relax_chunk(1).map(|_| ())
     }
 
-    /// One growth step.
+    /// One whole growth step (a button press).
     pub fn grow_one(&mut self) -> Result<(), String> {
         self.mode = RunMode::Paused;
-        self.grow_chunk(Instant::now()).map(|_| ())
+        let Some(sim) = self.sim.as_mut() else {
+            return Ok(());
+        };
+        let result = if sim.growth_finished().is_some() {
+            Ok(())
+        } else {
+            sim.grow_step().map(|_| ()).map_err(|e| e.to_string())
+        };
+        self.relaxation_started = false;
+        self.refresh(true, None);
+        result
     }
 
     /// Runs `n` sweeps; returns whether the relaxation converged.
@@ -136,20 +146,27 @@ impl Runner {
         Ok(status.converged)
     }
 
-    /// Growth steps until `deadline` (at least one); returns whether the run ended.
+    /// Growth until `deadline`, in resumable chunks (a few solver sweeps or
+    /// one contact iteration each; the chunk that completes a step also
+    /// extends the tips and rebuilds the discretisation); returns whether
+    /// the run ended.
     fn grow_chunk(&mut self, deadline: Instant) -> Result<bool, String> {
         let Some(sim) = self.sim.as_mut() else {
             return Ok(true);
         };
         let mut result = Ok(false);
+        let mut step_done = false;
         loop {
             if sim.growth_finished().is_some() {
                 result = Ok(true);
                 break;
             }
-            if let Err(e) = sim.grow_step() {
-                result = Err(e.to_string());
-                break;
+            match sim.advance_growth(self.sweeps_per_call.max(1)) {
+                Err(e) => {
+                    result = Err(e.to_string());
+                    break;
+                }
+                Ok(done) => step_done |= done.is_some(),
             }
             if Instant::now() >= deadline {
                 break;
@@ -157,7 +174,11 @@ impl Runner {
         }
         let finished = sim.growth_finished().is_some();
         self.relaxation_started = false;
-        self.refresh(true, None);
+        // the view changes when a step completes; mid-step it keeps showing
+        // the last converged field
+        if step_done || finished || result.is_err() {
+            self.refresh(true, None);
+        }
         result.map(|done| done || finished)
     }
 

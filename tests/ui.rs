@@ -324,7 +324,7 @@ fn grow_makes_the_crack_longer() {
 /// Frame time during Run growth on the default scene (logic + UI on the
 /// CPU, no GPU): `cargo test --release --test ui frame_time -- --nocapture`.
 #[test]
-#[ignore = "misses the 33 ms target: one grow_step of the default scene takes 0.1–0.6 s and runs whole inside a frame (needs a resumable grow step or a solver thread); run with --release for the numbers"]
+#[ignore = "misses the 33 ms maximum: growth runs in resumable chunks (mean 22 ms, p95 35 ms on a loaded 2-core machine), but the chunk that extends the tips and rebuilds the discretisation takes 40-240 ms; run with --release --include-ignored for the numbers"]
 fn frame_time_during_run_growth() {
     let mut h = harness(Options::default());
     h.run_steps(10);

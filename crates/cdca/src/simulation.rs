@@ -126,6 +126,8 @@ struct Scratch {
     residual: Vec<ResidualSample>,
     /// The resumable solve in progress, if any.
     job: Option<RelaxJob>,
+    /// Start of a resumable growth step in progress.
+    growth_start: Option<Instant>,
 }
 
 /// A resumable solve with contact: the linear relaxation of the current
@@ -168,6 +170,7 @@ impl Simulation {
                 contact: ContactInfo::default(),
                 residual: Vec::new(),
                 job: None,
+                growth_start: None,
             },
             state: State {
                 scene,
@@ -232,6 +235,7 @@ impl Simulation {
     /// solver; fills SIFs and criterion at every free tip.
     pub fn solve(&mut self) -> Result<SolveReport, SolveError> {
         self.scratch.job = None;
+        self.scratch.growth_start = None;
         let start = Instant::now();
         let f: Vec<f64> = self
             .scratch
@@ -470,10 +474,58 @@ impl Simulation {
             return Ok(self.state.history.last().cloned().unwrap_or_default());
         }
         let start = Instant::now();
+        self.state.lambda = self.increment_load_factor();
+        let report = self.solve()?;
+        Ok(self.finish_growth_step(&report, start))
+    }
+
+    /// Load factor of the growth loop's current increment.
+    fn increment_load_factor(&self) -> f64 {
+        self.state.increment as f64 / self.model.scene.growth.load_steps as f64
+    }
+
+    /// The same step as [`grow_step`](Self::grow_step), resumable: each call
+    /// runs at most `max_iterations` sweeps of the step's solve (see
+    /// [`relax`](Self::relax)) and returns `None` until the solve has
+    /// converged; the call that completes it evaluates the tips, extends
+    /// them, rebuilds the discretisation and returns the step's report.
+    /// This is how the workbench grows cracks without freezing a frame.
+    pub fn advance_growth(
+        &mut self,
+        max_iterations: usize,
+    ) -> Result<Option<GrowthStepReport>, SolveError> {
+        if self.state.outcome.is_some() {
+            return Ok(self.state.history.last().cloned());
+        }
+        let start = match self.scratch.growth_start {
+            Some(t) => t,
+            None => {
+                let lambda = self.increment_load_factor();
+                if lambda != self.state.lambda || !self.state.solved {
+                    self.set_load_factor(lambda);
+                    self.start_relaxation();
+                }
+                let t = Instant::now();
+                self.scratch.growth_start = Some(t);
+                t
+            }
+        };
+        if !(self.state.solved && self.scratch.job.is_none()) {
+            let status = self.relax(max_iterations)?;
+            if !status.converged {
+                return Ok(None);
+            }
+        }
+        self.scratch.growth_start = None;
+        let report = self.report(start.elapsed().as_secs_f64());
+        Ok(Some(self.finish_growth_step(&report, start)))
+    }
+
+    /// After the step's solve: decide, extend the growing tips (or advance
+    /// the load), and record the step.
+    fn finish_growth_step(&mut self, report: &SolveReport, start: Instant) -> GrowthStepReport {
         let g = &self.model.scene.growth;
         let (load_steps, max_here, max_steps) = (g.load_steps, g.max_growth_per_step, g.max_steps);
-        self.state.lambda = self.state.increment as f64 / load_steps as f64;
-        let report = self.solve()?;
         let da = self
             .model
             .scene
@@ -525,7 +577,7 @@ impl Simulation {
         }
         step.seconds = start.elapsed().as_secs_f64();
         self.state.history.push(step.clone());
-        Ok(step)
+        step
     }
 
     /// Extends the growing tips (all from the same solution) and rebuilds

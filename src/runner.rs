@@ -123,7 +123,17 @@ impl Runner {
         let result = if sim.growth_finished().is_some() {
             Ok(())
         } else {
-            sim.grow_step().map(|_| ()).map_err(|e| e.to_string())
+            // the step, then the re-solve of the grown cracks at the same
+            // load (SPEC §9), so that the field of the new geometry shows
+            sim.grow_step()
+                .and_then(|_| {
+                    if sim.is_solved() {
+                        Ok(())
+                    } else {
+                        sim.solve().map(|_| ())
+                    }
+                })
+                .map_err(|e| e.to_string())
         };
         self.relaxation_started = false;
         self.refresh(true, None);
@@ -155,7 +165,6 @@ impl Runner {
             return Ok(true);
         };
         let mut result = Ok(false);
-        let mut step_done = false;
         loop {
             if sim.growth_finished().is_some() {
                 result = Ok(true);
@@ -166,7 +175,7 @@ impl Runner {
                     result = Err(e.to_string());
                     break;
                 }
-                Ok(done) => step_done |= done.is_some(),
+                Ok(_) => {}
             }
             if Instant::now() >= deadline {
                 break;
@@ -174,10 +183,11 @@ impl Runner {
         }
         let finished = sim.growth_finished().is_some();
         self.relaxation_started = false;
-        // the view changes when a step completes; mid-step it keeps showing
-        // the last converged field
-        if step_done || finished || result.is_err() {
-            self.refresh(true, None);
+        // the view follows solved states; while a grown geometry is being
+        // solved it keeps showing the last converged field
+        let solved = sim.is_solved();
+        if solved || finished || result.is_err() {
+            self.refresh(solved, None);
         }
         result.map(|done| done || finished)
     }

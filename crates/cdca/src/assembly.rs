@@ -1,7 +1,6 @@
-//! Global sparse assembly of the operator `K = Σ_e K_e (+ contact)` and its
-//! product with a vector, matrix-free.
+//! The operator `K = Σ_e K_e (+ contact)`: contact blocks and the product
+//! with a vector, matrix-free (the sparse assembly is in [`crate::direct`]).
 
-use faer::sparse::{SparseColMat, Triplet};
 use nalgebra::DMatrix;
 
 use crate::dofs::FIXED;
@@ -14,45 +13,6 @@ pub struct ElementBlock {
     /// Index into [`Xfem::enriched`].
     pub slot: usize,
     pub k: DMatrix<f64>,
-}
-
-/// Assembles the lower triangle of the global stiffness (free DOFs).
-pub fn assemble_lower(
-    x: &Xfem,
-    extra: &[ElementBlock],
-) -> Result<SparseColMat<usize, f64>, String> {
-    let n = x.n_free();
-    let mut trip: Vec<Triplet<usize, usize, f64>> = Vec::with_capacity(x.mesh.element_count() * 36);
-    let mut push = |dofs: &[u32], k: &dyn Fn(usize, usize) -> f64| {
-        for (j, &dj) in dofs.iter().enumerate() {
-            if dj == FIXED {
-                continue;
-            }
-            for (i, &di) in dofs.iter().enumerate() {
-                if di == FIXED || di < dj {
-                    continue;
-                }
-                let v = k(i, j);
-                if v != 0.0 {
-                    trip.push(Triplet::new(di as usize, dj as usize, v));
-                }
-            }
-        }
-    };
-    for e in 0..x.mesh.element_count() {
-        if x.slot[e] == REGULAR {
-            let d = x.regular_dofs(e);
-            push(&d, &|i, j| x.k0[(i, j)]);
-        }
-    }
-    for el in &x.enriched {
-        push(&el.dofs, &|i, j| el.k[(i, j)]);
-    }
-    for b in extra {
-        let el = &x.enriched[b.slot];
-        push(&el.dofs, &|i, j| b.k[(i, j)]);
-    }
-    SparseColMat::try_new_from_triplets(n, n, &trip).map_err(|e| format!("{e:?}"))
 }
 
 /// `y = K u` element by element (no global matrix).

@@ -67,7 +67,7 @@ pub fn solve_with_contact(
     let mut tracker = FlipTracker::new(n);
     let mut info = ContactInfo::default();
     let mut kinds: Vec<ContactState> = Vec::new();
-    for it in 1..=params.max_iterations.max(1) {
+    for it in 1..=params.max_contact_iterations() {
         let mut f = f_ext.to_vec();
         let blocks = contact_system(x, &states, committed, &mut f);
         let new_kinds: Vec<ContactState> = states.iter().map(|s| s.state).collect();

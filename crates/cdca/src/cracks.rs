@@ -4,7 +4,7 @@
 //! distance (positive on the left of the polyline's direction) and, for tip
 //! `k`, `ψ = (x − x_tip)·t_tip` with `t_tip` the outward tangent.
 
-use crate::geometry::{P2, cross, distance_to_segment, perp, signed_distance};
+use crate::geometry::{P2, distance_to_segment, perp, signed_distance};
 use crate::scene::CrackSpec;
 
 /// What a crack end is.
@@ -185,14 +185,4 @@ pub fn first_crossing(crack: &Crack, a: P2, b: P2) -> Option<(f64, P2)> {
         }
     }
     best
-}
-
-/// Unit normal on the `φ > 0` side of segment `ab`.
-pub fn segment_normal(a: P2, b: P2) -> P2 {
-    perp((b - a).normalize())
-}
-
-/// Whether `p` lies left of the directed segment `ab`.
-pub fn left_of(p: P2, a: P2, b: P2) -> bool {
-    cross(b - a, p - a) >= 0.0
 }

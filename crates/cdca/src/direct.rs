@@ -6,7 +6,7 @@ use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, Side};
 
-use crate::assembly::{ElementBlock, assemble_lower};
+use crate::assembly::ElementBlock;
 use crate::dofs::FIXED;
 use crate::error::SolveError;
 use crate::xfem::{REGULAR, Xfem};
@@ -16,6 +16,7 @@ use crate::xfem::{REGULAR, Xfem};
 /// tree), computed once and reused for every numeric factorisation on that
 /// discretisation: contact blocks live on enriched elements, whose DOFs are
 /// already coupled, so they never change the pattern.
+#[derive(Clone, Debug)]
 pub struct Pattern {
     mat: SparseColMat<usize, f64>,
     symbolic: SymbolicLlt<usize>,
@@ -53,10 +54,8 @@ impl Pattern {
     pub fn factor(&self, x: &Xfem, extra: &[ElementBlock]) -> Result<Factor, SolveError> {
         let n = x.n_free();
         let mut mat = self.mat.clone();
-        let (col_ptr, row_idx) = {
-            let s = self.mat.symbolic();
-            (s.col_ptr().to_vec(), s.row_idx().to_vec())
-        };
+        let pattern = self.mat.symbolic();
+        let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
         let vals = mat.val_mut();
         vals.fill(0.0);
         let mut add = |dofs: &[u32], k: &dyn Fn(usize, usize) -> f64| {
@@ -70,7 +69,12 @@ impl Pattern {
                     if di == FIXED || di < dj {
                         continue;
                     }
-                    if let Ok(p) = rows.binary_search(&(di as usize)) {
+                    let p = rows.binary_search(&(di as usize));
+                    assert!(
+                        p.is_ok(),
+                        "DOF pair ({di}, {dj}) outside the stiffness pattern"
+                    );
+                    if let Ok(p) = p {
                         vals[a + p] += k(i, j);
                     }
                 }
@@ -103,18 +107,10 @@ pub struct Factor {
 }
 
 impl Factor {
-    /// Assembles and factorises `K` (bulk plus `extra` blocks).
+    /// Assembles and factorises `K` (bulk plus `extra` blocks), with the
+    /// discretisation's cached symbolic factorisation.
     pub fn new(x: &Xfem, extra: &[ElementBlock]) -> Result<Self, SolveError> {
-        let n = x.n_free();
-        let k = assemble_lower(x, extra)
-            .map_err(|detail| SolveError::NotPositiveDefinite { dofs: n, detail })?;
-        let llt = k
-            .sp_cholesky(Side::Lower)
-            .map_err(|e| SolveError::NotPositiveDefinite {
-                dofs: n,
-                detail: format!("{e:?} (a mechanism: check supports, or a singular enrichment)"),
-            })?;
-        Ok(Self { llt, n })
+        x.pattern()?.factor(x, extra)
     }
 
     /// Solves `K u = f`.

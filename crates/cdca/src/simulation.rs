@@ -513,8 +513,16 @@ impl Simulation {
             return Ok(self.state.history.last().cloned().unwrap_or_default());
         }
         let start = Instant::now();
-        self.state.lambda = self.increment_load_factor();
-        let report = self.solve()?;
+        let lambda = self.increment_load_factor();
+        // a state already solved at this load (e.g. the re-solve after the
+        // last growth) is not solved again
+        let report =
+            if self.state.solved && self.scratch.job.is_none() && lambda == self.state.lambda {
+                self.report(0.0)
+            } else {
+                self.state.lambda = lambda;
+                self.solve()?
+            };
         Ok(self.finish_growth_step(&report, start))
     }
 

@@ -2,7 +2,7 @@
 //! behind one trait so that the contact iteration and the app can use any.
 
 use crate::assembly::ElementBlock;
-use crate::direct::{Factor, Pattern};
+use crate::direct::Factor;
 use crate::error::SolveError;
 use crate::xfem::Xfem;
 
@@ -35,14 +35,11 @@ pub trait LinearSolver {
     ) -> Result<LinearInfo, SolveError>;
 }
 
-/// Sparse Cholesky, refactorised only when the matrix changed; the
-/// symbolic factorisation is computed once per discretisation.
+/// Sparse Cholesky, refactorised only when the matrix changed (the
+/// symbolic factorisation is the discretisation's, computed once).
 #[derive(Default)]
 pub struct DirectSolver {
     factor: Option<Factor>,
-    /// Pattern of the discretisation it was built for (by DOF count and
-    /// enriched elements, which change whenever the discretisation does).
-    pattern: Option<(usize, usize, Pattern)>,
 }
 
 impl LinearSolver for DirectSolver {
@@ -59,17 +56,7 @@ impl LinearSolver for DirectSolver {
         matrix_changed: bool,
     ) -> Result<LinearInfo, SolveError> {
         if matrix_changed || self.factor.is_none() {
-            let key = (x.n_free(), x.enriched.len());
-            if self
-                .pattern
-                .as_ref()
-                .is_none_or(|(n, e, _)| (*n, *e) != key)
-            {
-                self.pattern = Some((key.0, key.1, Pattern::new(x)?));
-            }
-            if let Some((_, _, p)) = &self.pattern {
-                self.factor = Some(p.factor(x, blocks)?);
-            }
+            self.factor = Some(Factor::new(x, blocks)?);
         }
         let Some(factor) = &self.factor else {
             unreachable!("factor was just set")

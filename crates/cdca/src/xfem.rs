@@ -6,13 +6,16 @@
 //! rebuilt when cracks change. Elements with no enriched node share one
 //! stiffness matrix `k0`, computed once.
 
+use std::cell::OnceCell;
 use std::collections::{BTreeMap, BTreeSet};
 
 use nalgebra::{DMatrix, SMatrix};
 
-use crate::cracks::{Crack, TipKind};
+use crate::cracks::Crack;
+use crate::direct::Pattern;
 use crate::dofs::{DofMap, FIXED};
 use crate::enrichment::{EnrValue, Enrichment, EnrichmentFunctions};
+use crate::error::SolveError;
 use crate::geometry::{P2, clip_segment_to_box, polygon_area, polygon_centroid};
 use crate::material::Elastic;
 use crate::mesh::Mesh;
@@ -120,6 +123,9 @@ pub struct Xfem {
     /// Stiffness of an ordinary element (DOF order `x0 y0 x1 y1 …`).
     pub k0: SMatrix<f64, 8, 8>,
     pub faces: Vec<FacePoint>,
+    /// Sparsity pattern and symbolic Cholesky of the stiffness, computed on
+    /// first use and shared by every factorisation on this discretisation.
+    pattern: OnceCell<Pattern>,
 }
 
 /// Per element, the `(crack, segment)` pairs whose segment touches it.
@@ -153,6 +159,7 @@ impl Xfem {
             slot: Vec::new(),
             enriched: Vec::new(),
             faces: Vec::new(),
+            pattern: OnceCell::new(),
         };
         x.build_elements(&segs, &tips, reuse);
         x.build_faces();
@@ -218,7 +225,15 @@ impl Xfem {
             } else {
                 pieces
             };
-            let qps = element_rule(lo, hi, &pieces, tips.get(&e).copied(), near_tip, true, eps);
+            let qps = element_rule(
+                lo,
+                hi,
+                &pieces,
+                tips.get(&e).copied(),
+                near_tip,
+                !lines.is_empty(),
+                eps,
+            );
             let mut el = EnrichedElement {
                 elem: e,
                 enrs,
@@ -458,6 +473,15 @@ impl Xfem {
         self.faces = faces;
     }
 
+    /// The stiffness pattern with its symbolic factorisation (computed once).
+    pub fn pattern(&self) -> Result<&Pattern, SolveError> {
+        if let Some(p) = self.pattern.get() {
+            return Ok(p);
+        }
+        let p = Pattern::new(self)?;
+        Ok(self.pattern.get_or_init(|| p))
+    }
+
     /// Number of free DOFs.
     pub fn n_free(&self) -> usize {
         self.dofs.n_free
@@ -654,9 +678,4 @@ fn classify_nodes(
 pub fn prepare_cracks(mut cracks: Vec<Crack>, m: &Mesh) -> Vec<Crack> {
     crate::cracks::classify_tips(&mut cracks, m.width, m.height, 1e-9 * m.h());
     cracks
-}
-
-/// Whether any crack has a free tip of the given crack (used by reports).
-pub fn has_free_tip(c: &Crack) -> bool {
-    c.tips.contains(&TipKind::Free)
 }

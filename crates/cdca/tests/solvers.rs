@@ -6,16 +6,14 @@
 //! the tables).
 
 use cdca::contact::FaceState;
-use cdca::contact_loop::{ContactParams, solve_with_contact};
-use cdca::cracks::TipFrame;
-use cdca::field::Field;
+use cdca::contact_loop::{ContactParams, relative_change, solve_with_contact};
 use cdca::geometry::P2;
 use cdca::model::Model;
 use cdca::relaxation::Relaxation;
 use cdca::scene::{Scene, SolverKind, SolverSpec};
-use cdca::sif::tip_sifs;
 use cdca::solver::LinearSolver;
 use cdca::solvers::{kind_name, make_solver};
+use cdca::tips::all_tip_sifs;
 use cdca::xfem::Xfem;
 use cdca::{ContactState, SolveError};
 
@@ -92,37 +90,21 @@ fn solve(
 
 /// (K_I, K_II) of every free tip, contact tractions included.
 fn sifs(x: &Xfem, u: &[f64], states: &[FaceState]) -> Vec<(f64, f64)> {
-    let field = Field { xfem: x, u };
     let tractions: Vec<P2> = x
         .faces
         .iter()
         .zip(states)
         .map(|(fp, s)| s.traction(fp))
         .collect();
-    let mut out = Vec::new();
-    for (c, crack) in x.funcs.cracks.iter().enumerate() {
-        for k in crack.free_tips() {
-            let s = tip_sifs(
-                &field,
-                c,
-                &TipFrame::of(crack, k),
-                3.0 * x.mesh.h(),
-                &tractions,
-            );
-            out.push((s.k1, s.k2));
-        }
-    }
-    out
+    all_tip_sifs(x, u, &tractions)
+        .into_iter()
+        .map(|(_, _, _, s)| (s.k1, s.k2))
+        .collect()
 }
 
+/// `‖a − b‖ / ‖b‖`.
 fn rel_diff(a: &[f64], b: &[f64]) -> f64 {
-    let d: f64 = a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| (x - y) * (x - y))
-        .sum::<f64>()
-        .sqrt();
-    d / b.iter().map(|y| y * y).sum::<f64>().sqrt()
+    relative_change(b, a)
 }
 
 /// Reference: the direct sparse Cholesky solution with the same contact

@@ -1,16 +1,24 @@
 #!/usr/bin/env bash
 # Runs the workbench under a virtual X display and saves a screenshot of the
-# whole screen to assets/screenshot.png (used by the README).
+# whole screen (used by the README).
 #
-#   bash scripts/screenshot.sh [SECONDS]     # default: wait 8 s before the shot
+#   bash scripts/screenshot.sh [SECONDS] [OUT.png] [-- WORKBENCH ARGS...]
+#
+# SECONDS: wait before the shot (default 8); OUT.png: default
+# assets/screenshot.png; the workbench arguments, e.g.
+#   bash scripts/screenshot.sh 6 assets/relax.png -- scene.json --run relax
 #
 # Installs what it needs with apt-get when missing: xvfb, imagemagick and the
 # run-time libraries of winit + glow (X cursor/input, xkbcommon, EGL/GL Mesa).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-wait_s="${1:-8}"
+wait_s="8"
 out="assets/screenshot.png"
+if [[ $# -gt 0 && "$1" != "--" ]]; then wait_s="$1"; shift; fi
+if [[ $# -gt 0 && "$1" != "--" ]]; then out="$1"; shift; fi
+[[ $# -gt 0 && "$1" == "--" ]] && shift
+app_args=("$@")
 size="1400x900"
 
 need=()
@@ -47,7 +55,7 @@ sleep 1
 data_dir="$(mktemp -d)"
 DISPLAY="$display" XDG_DATA_HOME="$data_dir" HOME="$data_dir" \
     LIBGL_ALWAYS_SOFTWARE=1 WINIT_UNIX_BACKEND=x11 WAYLAND_DISPLAY= \
-    "$bin" &
+    "$bin" "${app_args[@]}" &
 app_pid=$!
 sleep "$wait_s"
 if ! kill -0 "$app_pid" 2>/dev/null; then

@@ -30,12 +30,18 @@ if ((build)); then
 fi
 [ -f dist/index.html ] || { echo "no dist/: run scripts/build-web.sh" >&2; exit 1; }
 
-if ! command -v chromium >/dev/null 2>&1 || ! command -v node >/dev/null 2>&1; then
-    step "apt-get install chromium nodejs npm"
+# Only what is missing: a machine whose node comes from elsewhere (with its
+# own npm) must not get Debian's nodejs/npm, which conflict with it.
+need=()
+command -v chromium >/dev/null 2>&1 || need+=(chromium)
+command -v node >/dev/null 2>&1 || need+=(nodejs)
+command -v npm >/dev/null 2>&1 || need+=(npm)
+if ((${#need[@]})); then
+    step "apt-get install ${need[*]}"
     sudo=()
     [ "$(id -u)" -eq 0 ] || sudo=(sudo)
     "${sudo[@]}" apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq chromium nodejs npm
+    DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq "${need[@]}"
 fi
 if [ ! -d tests/web/node_modules/playwright-core ]; then
     step "npm ci (playwright-core)"

@@ -3,6 +3,7 @@
 
 use std::sync::{Arc, Mutex};
 
+use cdca::scene::SolverKind;
 use cdca::{CriterionCurve, Scene};
 use egui::Ui;
 use web_time::{Duration, Instant};
@@ -10,13 +11,17 @@ use web_time::{Duration, Instant};
 pub use crate::canvas::CANVAS_LABEL;
 use crate::canvas::{Canvas, CanvasInput, ViewSettings};
 use crate::command::Command;
-use crate::compare::Comparison;
+use crate::compare::{self, Race};
 use crate::edit::{Editor, UndoStack};
 use crate::field::{FieldKey, FieldKind};
-use crate::panels::{self, FrameStats, PlotTab};
+use crate::frame_stats::FrameStats;
+use crate::panels;
 use crate::persist::Persisted;
 use crate::runner::{RunMode, Runner};
 use crate::scenes;
+use crate::study::{Study, StudySetup};
+pub use crate::view::Message;
+use crate::view::{AppView, PlotTab, RunStatus, ViewState};
 
 /// Solver work per frame (the rest of a 60 Hz frame is left to drawing).
 pub const FRAME_BUDGET: Duration = Duration::from_millis(12);
@@ -33,6 +38,19 @@ pub struct Options {
     /// Where that scene came from.
     pub scene_source: String,
     pub view: ViewSettings,
+    /// A run to start after the first solve (command line `--run`).
+    pub start_run: Option<StartRun>,
+}
+
+/// A run the app starts by itself (`cdca-workbench SCENE --run relax|grow`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StartRun {
+    /// Relax with the scene's solver (the direct solver solves at once).
+    Relax,
+    /// Run growth until the run ends.
+    Grow,
+    /// Race the solvers (Compare solvers).
+    Compare,
 }
 
 impl Default for Options {
@@ -43,15 +61,9 @@ impl Default for Options {
             scene: None,
             scene_source: scenes::DEFAULT_TITLE.to_owned(),
             view: ViewSettings::default(),
+            start_run: None,
         }
     }
-}
-
-/// A message shown above the canvas until dismissed.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Message {
-    Error(String),
-    Info(String),
 }
 
 /// σ_θθ and τ_rθ around the inspected tip, for the solution `version`.
@@ -75,7 +87,10 @@ pub struct WorkbenchApp {
     pub(crate) selected_tip: Option<usize>,
     pub(crate) tip_curve: Option<TipCurve>,
     pub(crate) plot_tab: PlotTab,
-    pub(crate) comparison: Option<Comparison>,
+    pub(crate) race: Option<Race>,
+    pub(crate) race_time_cap: f64,
+    pub(crate) study: Option<Study>,
+    pub(crate) study_setup: StudySetup,
     pub(crate) options: Options,
     pub(crate) started: bool,
     pub(crate) frame_stats: FrameStats,
@@ -88,6 +103,7 @@ pub struct WorkbenchApp {
 impl WorkbenchApp {
     pub fn new(options: Options) -> Self {
         let scene = options.scene.clone().unwrap_or_else(scenes::default_scene);
+        let plot_tab = PlotTab::fitting(&scene);
         let mut runner = Runner::default();
         let message = runner.invalidate(&scene).err().map(Message::Error);
         Self {
@@ -102,8 +118,11 @@ impl WorkbenchApp {
             message,
             selected_tip: None,
             tip_curve: None,
-            plot_tab: PlotTab::default(),
-            comparison: None,
+            plot_tab,
+            race: None,
+            race_time_cap: compare::DEFAULT_TIME_CAP,
+            study: None,
+            study_setup: StudySetup::default(),
             options,
             started: false,
             frame_stats: FrameStats::default(),
@@ -115,20 +134,37 @@ impl WorkbenchApp {
 
     /// The native and web entry: restores the last scene and view settings.
     pub fn from_creation_context(cc: &eframe::CreationContext<'_>) -> Self {
+        Self::launch(cc, None, None)
+    }
+
+    /// The entry from the command line: opens `scene` (source, scene)
+    /// instead of the saved one when given, restores the view settings, and
+    /// starts `run` after the first solve.
+    pub fn launch(
+        cc: &eframe::CreationContext<'_>,
+        scene: Option<(String, Scene)>,
+        run: Option<StartRun>,
+    ) -> Self {
         let saved = Persisted::load(cc.storage);
-        let scene = saved
-            .scene_json
-            .as_deref()
-            .and_then(|j| Scene::from_json(j).ok());
-        let source = if scene.is_some() && !saved.scene_source.is_empty() {
-            saved.scene_source
+        let (scene, source) = if let Some((source, scene)) = scene {
+            (Some(scene), source)
         } else {
-            scenes::DEFAULT_TITLE.to_owned()
+            let scene = saved
+                .scene_json
+                .as_deref()
+                .and_then(|j| Scene::from_json(j).ok());
+            let source = if scene.is_some() && !saved.scene_source.is_empty() {
+                saved.scene_source
+            } else {
+                scenes::DEFAULT_TITLE.to_owned()
+            };
+            (scene, source)
         };
         Self::new(Options {
             scene,
             scene_source: source,
             view: saved.view,
+            start_run: run,
             ..Options::default()
         })
     }
@@ -165,6 +201,10 @@ impl WorkbenchApp {
             .is_some_and(|c| c.tip == tip && c.curve.is_some());
         Some((tip, has_curve))
     }
+    /// How the growth run ended, if it has.
+    pub fn growth_outcome(&self) -> Option<cdca::report::Outcome> {
+        self.runner.view.outcome
+    }
     pub fn growth_steps(&self) -> usize {
         self.runner.view.history.len()
     }
@@ -174,6 +214,52 @@ impl WorkbenchApp {
     /// The sampled field currently shown, if complete.
     pub fn field_is_shown(&self) -> bool {
         self.runner.field.current().is_some()
+    }
+    /// The solver race, running or finished.
+    pub fn race(&self) -> Option<&Race> {
+        self.race.as_ref()
+    }
+    /// The parameter study, running or finished.
+    pub fn study(&self) -> Option<&Study> {
+        self.study.as_ref()
+    }
+    /// The solution version and the number of samples of the field the
+    /// canvas shows, if any.
+    pub fn shown_field(&self) -> Option<(u64, usize)> {
+        self.runner
+            .field
+            .current()
+            .map(|f| (f.key.version, f.samples.len()))
+    }
+    /// The stress samples of the field the canvas shows (σ_xx, σ_yy, τ_xy).
+    pub fn shown_stresses(&self) -> Vec<[f64; 3]> {
+        self.runner
+            .field
+            .current()
+            .map(|f| f.samples.iter().map(|s| s.stress).collect())
+            .unwrap_or_default()
+    }
+    /// Growth steps done, residual samples of the current solve and its
+    /// last residual: changes whenever the growth run advances.
+    pub fn growth_progress(&self) -> (usize, usize, Option<f64>) {
+        let v = &self.runner.view;
+        (
+            v.history.len(),
+            v.residual_samples,
+            v.last_residual.map(|r| r.residual),
+        )
+    }
+    /// The solver growth uses (or will use) on the current simulation.
+    pub fn growth_solver(&self) -> cdca::scene::SolverKind {
+        self.runner.growth_solver_kind(&self.scene)
+    }
+    /// The relaxation status shown, if any.
+    pub fn relax_status(&self) -> Option<cdca::RelaxStatus> {
+        self.runner.view.relax
+    }
+    /// The plot the bottom panel shows.
+    pub fn plot_tab(&self) -> PlotTab {
+        self.plot_tab
     }
     pub fn frame_stats(&self) -> &FrameStats {
         &self.frame_stats
@@ -201,17 +287,37 @@ impl WorkbenchApp {
             if self.options.solve_on_start {
                 self.run_cmd(ctx, Command::Solve);
             }
+            match self.options.start_run {
+                Some(StartRun::Relax) if self.scene.solver.kind != SolverKind::Direct => {
+                    self.run_cmd(ctx, Command::Relax);
+                }
+                Some(StartRun::Relax) if !self.options.solve_on_start => {
+                    self.run_cmd(ctx, Command::Solve);
+                }
+                Some(StartRun::Grow) => self.run_cmd(ctx, Command::RunGrowth),
+                Some(StartRun::Compare) => self.run_cmd(
+                    ctx,
+                    Command::CompareSolvers {
+                        time_cap: self.race_time_cap,
+                    },
+                ),
+                _ => {}
+            }
         }
         self.finish_screenshot(ctx);
         let deadline = Instant::now() + FRAME_BUDGET;
-        if let Some(c) = self.comparison.as_mut().filter(|c| !c.finished()) {
+        let key = self.field_key();
+        if let Some(c) = self.race.as_mut().filter(|c| !c.finished()) {
             c.tick(deadline);
-        } else if let Err(e) = self.runner.tick(FRAME_BUDGET, self.field_key()) {
+        } else if let Some(s) = self.study.as_mut().filter(|s| !s.finished()) {
+            s.tick(deadline);
+        } else if let Err(e) = self.runner.tick(FRAME_BUDGET, key) {
             self.message = Some(Message::Error(e));
         }
         self.refresh_tip_curve();
         let busy = self.runner.mode != RunMode::Paused
-            || self.comparison.as_ref().is_some_and(|c| !c.finished())
+            || self.race.as_ref().is_some_and(|c| !c.finished())
+            || self.study.as_ref().is_some_and(|s| !s.finished())
             || self
                 .field_key()
                 .is_some_and(|k| !self.runner.field.is_current(&k));
@@ -220,15 +326,23 @@ impl WorkbenchApp {
         }
     }
 
-    /// The field the canvas wants, if any.
-    fn field_key(&self) -> Option<FieldKey> {
+    /// The field the canvas wants, if any: the current solution or
+    /// iterate, coarse (one sample per element) while a run goes on and at
+    /// the chosen resolution when it stops.
+    fn field_key(&mut self) -> Option<FieldKey> {
+        let version = self.runner.field_version();
+        let running = self.runner.mode != RunMode::Paused;
         let s = &self.settings;
         let wanted = s.field != FieldKind::None || s.deformed;
         let sim = self.runner.simulation()?;
         let scene = sim.scene();
-        let k = s.samples_per_cell.clamp(1, 4);
-        (wanted && self.runner.view.solved).then(|| FieldKey {
-            version: self.runner.view.version,
+        let k = if running {
+            1
+        } else {
+            s.samples_per_cell.clamp(1, 4)
+        };
+        (wanted && self.runner.view.has_field()).then(|| FieldKey {
+            version,
             cols: scene.mesh.nx * k,
             rows: scene.mesh.ny * k,
             width: scene.specimen.width,
@@ -275,20 +389,66 @@ impl WorkbenchApp {
         }
     }
 
-    /// The whole UI. Panels read state and push commands.
+    /// What the panels read, and the view settings they may edit.
+    fn view_parts(&mut self) -> (AppView<'_>, ViewState<'_>) {
+        let run = RunStatus {
+            mode: self.runner.mode,
+            stale: self.runner.stale,
+            field_progress: self.runner.field.progress(),
+            last_solve_seconds: self.runner.last_solve_seconds,
+            last_build_seconds: self.runner.last_build_seconds,
+            pace: self.runner.pace,
+            accelerate_growth: self.runner.accelerate_growth,
+            growth_solver: self.runner.growth_solver_kind(&self.scene),
+        };
+        let tip_curve = self
+            .tip_curve
+            .as_ref()
+            .filter(|c| Some(c.tip) == self.selected_tip)
+            .and_then(|c| c.curve.as_ref());
+        let view = AppView {
+            scene: &self.scene,
+            scene_source: &self.scene_source,
+            solution: &self.runner.view,
+            run,
+            can_undo: self.undo.can_undo(),
+            can_redo: self.undo.can_redo(),
+            race: self.race.as_ref(),
+            study: self.study.as_ref(),
+            selected_tip: self.selected_tip,
+            tip_curve,
+            deform_scale_used: self.canvas.deform_scale_used,
+        };
+        let state = ViewState {
+            settings: &mut self.settings,
+            editor: &mut self.editor,
+            plot_tab: &mut self.plot_tab,
+            fit_requested: &mut self.canvas.fit_requested,
+            race_time_cap: &mut self.race_time_cap,
+            study_setup: &mut self.study_setup,
+        };
+        (view, state)
+    }
+
+    /// The whole UI. Panels read an [`AppView`] and push commands.
     pub fn ui(&mut self, ui: &mut Ui) {
         let mut cmds = Vec::new();
         egui::Panel::top("menu").show(ui, |ui| {
-            panels::menu::menu_bar_ui(ui, self, &mut cmds);
+            let (v, mut s) = self.view_parts();
+            panels::menu::menu_bar_ui(ui, &v, &mut s, &mut cmds);
         });
         egui::Panel::top("toolbar").show(ui, |ui| {
-            panels::menu::toolbar_ui(ui, self, &mut cmds);
+            let (v, mut s) = self.view_parts();
+            panels::menu::toolbar_ui(ui, &v, &mut s, &mut cmds);
         });
+        // Side panels keep their width whatever their text: content wider
+        // than the panel scrolls instead of widening it (and moving the canvas).
         egui::Panel::left("scene")
             .resizable(true)
             .default_size(280.0)
+            .size_range(200.0..=600.0)
             .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| {
+                fixed_width_scroll(ui, "scene scroll", |ui| {
                     panels::scene::scene_ui(
                         ui,
                         &self.scene,
@@ -300,19 +460,24 @@ impl WorkbenchApp {
             });
         egui::Panel::right("solver")
             .resizable(true)
-            .default_size(300.0)
+            .default_size(320.0)
+            .size_range(240.0..=600.0)
             .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| {
-                    panels::solver::solver_ui(ui, self, &mut cmds);
+                fixed_width_scroll(ui, "solver scroll", |ui| {
+                    let (v, s) = self.view_parts();
+                    panels::solver::solver_ui(ui, &v, s.race_time_cap, &mut cmds);
                     ui.separator();
-                    panels::tip::tip_ui(ui, self, &mut cmds);
+                    panels::tip::tip_ui(ui, &v, &mut cmds);
                 });
             });
         egui::Panel::bottom("plots")
             .resizable(true)
             .default_size(220.0)
             .show(ui, |ui| {
-                panels::plots::plots_ui(ui, self, &mut cmds);
+                // the panel keeps its height whether it shows a plot or a hint
+                ui.set_min_height(ui.available_height());
+                let (v, s) = self.view_parts();
+                panels::plots::plots_ui(ui, &v, s.plot_tab, s.study_setup, &mut cmds);
             });
         egui::CentralPanel::default().show(ui, |ui| {
             panels::menu::message_ui(ui, self.message.as_ref(), &mut cmds);
@@ -375,6 +540,15 @@ impl WorkbenchApp {
     }
 }
 
+/// A scroll area filling the panel's width: content wider than the panel
+/// scrolls sideways instead of widening the panel.
+fn fixed_width_scroll(ui: &mut Ui, id: &str, add_contents: impl FnOnce(&mut Ui)) {
+    egui::ScrollArea::both()
+        .id_salt(id)
+        .auto_shrink([false, false])
+        .show(ui, add_contents);
+}
+
 impl eframe::App for WorkbenchApp {
     fn logic(&mut self, ctx: &egui::Context, _frame: &mut eframe::Frame) {
         WorkbenchApp::logic(self, ctx);
@@ -386,7 +560,7 @@ impl eframe::App for WorkbenchApp {
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         Persisted {
-            scene_json: Some(self.scene.to_json()),
+            scene_json: self.scene.to_json().ok(),
             scene_source: self.scene_source.clone(),
             view: self.settings.clone(),
         }

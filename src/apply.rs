@@ -3,14 +3,18 @@
 
 use cdca::Scene;
 
-use crate::app::{Message, WorkbenchApp};
+use crate::app::WorkbenchApp;
 use crate::command::{Command, Export};
-use crate::compare::Comparison;
+use crate::compare::Race;
 use crate::runner::RunMode;
+use crate::study::Study;
+use crate::view::Message;
+use crate::view::PlotTab;
 use crate::{export, io, scenes};
 
 impl WorkbenchApp {
     pub(crate) fn run_cmd(&mut self, ctx: &egui::Context, cmd: Command) {
+        self.follow_with_plot(&cmd);
         match cmd {
             Command::SetScene { scene, ongoing } => {
                 if *scene == self.scene {
@@ -68,15 +72,32 @@ impl WorkbenchApp {
                     self.runner.mode = RunMode::Relaxing;
                 }
             }
-            Command::GrowOne => {
+            Command::GrowOne | Command::RunGrowth => {
                 if self.ensure_simulation() {
-                    let r = self.runner.grow_one();
+                    let one = matches!(cmd, Command::GrowOne);
+                    let r = self.runner.start_growth(one);
                     self.show_error(r);
                 }
             }
-            Command::RunGrowth => {
-                if self.ensure_simulation() {
-                    self.runner.mode = RunMode::Growing;
+            Command::SetPace(pace) => self.runner.pace = pace,
+            Command::SetAccelerateGrowth(on) => self.runner.accelerate_growth = on,
+            Command::RunStudy(setup) => {
+                self.runner.mode = RunMode::Paused;
+                match Study::new(
+                    &self.scene,
+                    &setup.path,
+                    setup.values(),
+                    self.runner.accelerate_growth,
+                ) {
+                    Ok(study) => self.study = Some(study),
+                    Err(e) => {
+                        self.message = Some(Message::Error(format!("The study cannot run: {e}")));
+                    }
+                }
+            }
+            Command::CancelStudy => {
+                if let Some(s) = self.study.as_mut() {
+                    s.cancel();
                 }
             }
             Command::Pause => self.runner.mode = RunMode::Paused,
@@ -85,13 +106,30 @@ impl WorkbenchApp {
                 self.show_validity(valid);
                 self.auto_solve();
             }
-            Command::CompareSolvers(kinds) => {
+            Command::CompareSolvers { time_cap } => {
                 self.runner.mode = RunMode::Paused;
-                self.comparison = Some(Comparison::new(&self.scene, &kinds));
+                self.race = Some(Race::new(&self.scene, time_cap));
             }
             Command::SelectTip(tip) => self.selected_tip = tip,
             Command::DismissMessage => self.message = None,
         }
+    }
+
+    /// Shows the plot that fits the run a command starts: the residual for
+    /// sweeps, the SIFs for growth, the race for Compare solvers.
+    fn follow_with_plot(&mut self, cmd: &Command) {
+        let iterative = self.scene.solver.kind != cdca::scene::SolverKind::Direct;
+        self.plot_tab = match cmd {
+            Command::Step | Command::Relax => PlotTab::ResidualBySweep,
+            Command::Solve if iterative => PlotTab::ResidualBySweep,
+            Command::GrowOne | Command::RunGrowth => PlotTab::Sifs,
+            Command::CompareSolvers { .. } => PlotTab::SolverComparison,
+            Command::RunStudy(_) => PlotTab::Study,
+            Command::SetScene { scene, .. } if scene.solver.kind != self.scene.solver.kind => {
+                PlotTab::fitting(scene)
+            }
+            _ => return,
+        };
     }
 
     fn show_error(&mut self, result: Result<(), String>) {
@@ -147,7 +185,7 @@ impl WorkbenchApp {
     /// hidden; when it ends, the simulation is rebuilt and re-solved if that
     /// is quick.
     fn scene_changed(&mut self, ongoing: bool) {
-        self.comparison = None;
+        self.race = None;
         self.selected_tip = None;
         self.tip_curve = None;
         if self
@@ -190,11 +228,14 @@ impl WorkbenchApp {
     fn export(&mut self, ctx: &egui::Context, what: Export) {
         let stem = file_stem(&self.scene);
         let result = match what {
-            Export::Scene => io::save_dialog(
-                &format!("{stem}.json"),
-                ("Scene (JSON)", "json"),
-                self.scene.to_json().as_bytes(),
-            ),
+            Export::Scene => match self.scene.to_json() {
+                Ok(json) => io::save_dialog(
+                    &format!("{stem}.json"),
+                    ("Scene (JSON)", "json"),
+                    json.as_bytes(),
+                ),
+                Err(e) => Err(e.to_string()),
+            },
             Export::CrackPaths => {
                 let cracks = if self.runner.view.cracks.is_empty() {
                     let h = self.scene.element_size();
@@ -227,6 +268,22 @@ impl WorkbenchApp {
                         vtu.as_bytes(),
                     )
                 }
+            },
+            Export::Race => match &self.race {
+                None => Err("run Compare solvers before exporting the race".to_owned()),
+                Some(race) => io::save_dialog(
+                    &format!("{stem}_race.csv"),
+                    ("CSV", "csv"),
+                    race.to_csv().as_bytes(),
+                ),
+            },
+            Export::Study => match &self.study {
+                None => Err("run a study before exporting it".to_owned()),
+                Some(study) => io::save_dialog(
+                    &format!("{stem}_study.csv"),
+                    ("CSV", "csv"),
+                    study.to_csv().as_bytes(),
+                ),
             },
             Export::CanvasPng => {
                 self.request_canvas_png(ctx);

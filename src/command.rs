@@ -2,7 +2,8 @@
 //! commands; the app applies them once per frame, before any solver work.
 
 use cdca::Scene;
-use cdca::scene::SolverKind;
+
+use crate::study::StudySetup;
 
 /// Files the workbench can write.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -17,6 +18,10 @@ pub enum Export {
     Fields,
     /// The canvas as a PNG image.
     CanvasPng,
+    /// The solver race as CSV (the columns of `cdca bench`).
+    Race,
+    /// The parameter study as CSV.
+    Study,
 }
 
 /// One request from the UI.
@@ -59,8 +64,20 @@ pub enum Command {
     Pause,
     /// Back to the scene's initial cracks, no solution.
     Reset,
-    /// Run every solver on the current scene and record error against run time.
-    CompareSolvers(Vec<SolverKind>),
+    /// Race every solver on the current scene from a cold start and record
+    /// error against run time, each iterative run capped at `time_cap` s.
+    CompareSolvers {
+        time_cap: f64,
+    },
+    /// Sweeps per frame while relaxing or growing (None: as many as the
+    /// frame budget allows).
+    SetPace(Option<usize>),
+    /// Growth with the automaton runs its multigrid-accelerated form
+    /// (applies from the next growth run).
+    SetAccelerateGrowth(bool),
+    /// Run a parameter study on the current scene.
+    RunStudy(StudySetup),
+    CancelStudy,
     /// Inspect tip `i` of the current solution's tips (None: close).
     SelectTip(Option<usize>),
     DismissMessage,

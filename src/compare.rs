@@ -1,40 +1,78 @@
-//! Error against run time of each solver on the current scene. The direct
-//! solver runs first and gives the reference displacement at probe points;
-//! each iterative solver then relaxes in budgeted chunks across frames and
-//! records its error at the probes against its accumulated run time.
+//! The solver race: error against run time of every solver on the current
+//! scene, measured as `cdca bench` measures it.
+//!
+//! The contact states are settled first with the direct solver, starting
+//! from the scene's states; then every solver solves the same final linear
+//! system `(K + K_contact) u = f` from a cold start, `u = 0`. The direct
+//! solution is the reference. Each iterative solver runs in budgeted chunks
+//! across frames and is sampled at checkpoints (every 25 % more
+//! iterations), where the relative energy-norm error
+//! `‖u − u_ref‖_K / ‖u_ref‖_K` and the largest K_I, K_II errors (relative to
+//! the largest reference |K|) are measured with the solver's clock paused.
+//! The clock counts setup (cells, factorisations, hierarchy) and
+//! iterations. A run ends when it converges, when its energy error reaches
+//! [`ENERGY_FLOOR`], or at the time cap.
 
-use cdca::scene::SolverKind;
-use cdca::{Scene, Simulation};
+use std::fmt::Write as _;
+
+use cdca::Scene;
+use cdca::contact::iteration::ContactParams;
+pub use cdca::race::Sample;
+use cdca::race::{RaceSystem, Reference};
+use cdca::scene::{Ordering, SolverKind, SolverSpec};
+use cdca::solvers::Relaxation;
 use egui_plot::PlotPoint;
 use web_time::{Duration, Instant};
 
-/// One solver's curve.
-pub struct CompareRun {
+/// Energy error at which a run is complete (as in `cdca bench`).
+pub const ENERGY_FLOOR: f64 = 1e-11;
+
+/// Default time cap of one iterative run, s.
+pub const DEFAULT_TIME_CAP: f64 = 10.0;
+
+/// One contender: how the bench names it, its solver, ordering and ω
+/// (`None`: the optimal SOR factor 2/(1 + sin(π/n)) of an n × n mesh).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Racer {
+    pub name: &'static str,
     pub kind: SolverKind,
-    /// x = run time (s), y = log10 of the relative displacement error.
-    pub points: Vec<PlotPoint>,
-    pub seconds: f64,
-    pub iterations: usize,
-    pub done: bool,
-    pub error: Option<String>,
+    pub ordering: Ordering,
+    pub omega: Option<f64>,
 }
 
-/// The comparison in progress (or finished).
-pub struct Comparison {
-    scene: Scene,
-    pub runs: Vec<CompareRun>,
-    current: usize,
-    sim: Option<Simulation>,
-    probes: Vec<[f64; 2]>,
-    reference: Option<Vec<[f64; 2]>>,
-    /// Wall time after which an iterative solver is stopped, s.
-    pub time_limit: f64,
-}
-
-/// Probes per side of the probe grid.
-const PROBES: usize = 8;
-/// Relative error at which a run is complete.
-const ERROR_FLOOR: f64 = 1e-12;
+/// The direct reference and the iterative solvers of `cdca bench`.
+pub const RACERS: [Racer; 5] = [
+    Racer {
+        name: "direct",
+        kind: SolverKind::Direct,
+        ordering: Ordering::Lexicographic,
+        omega: Some(1.0),
+    },
+    Racer {
+        name: "automaton",
+        kind: SolverKind::Automaton,
+        ordering: Ordering::Lexicographic,
+        omega: Some(1.0),
+    },
+    Racer {
+        name: "automaton-sor",
+        kind: SolverKind::Automaton,
+        ordering: Ordering::RedBlack,
+        omega: None,
+    },
+    Racer {
+        name: "cg",
+        kind: SolverKind::Cg,
+        ordering: Ordering::Lexicographic,
+        omega: Some(1.0),
+    },
+    Racer {
+        name: "multigrid",
+        kind: SolverKind::Multigrid,
+        ordering: Ordering::Lexicographic,
+        omega: Some(1.0),
+    },
+];
 
 pub fn solver_name(kind: SolverKind) -> &'static str {
     match kind {
@@ -45,129 +83,281 @@ pub fn solver_name(kind: SolverKind) -> &'static str {
     }
 }
 
-impl Comparison {
-    /// Compares `kinds` on `scene`; the direct solver is always run first
-    /// as the reference.
-    pub fn new(scene: &Scene, kinds: &[SolverKind]) -> Self {
-        let mut order = vec![SolverKind::Direct];
-        order.extend(kinds.iter().copied().filter(|k| *k != SolverKind::Direct));
-        let (w, h) = (scene.specimen.width, scene.specimen.height);
-        let probes = (0..PROBES * PROBES)
-            .map(|k| {
-                let (i, j) = (k % PROBES, k / PROBES);
-                [
-                    w * (i as f64 + 0.53) / PROBES as f64,
-                    h * (j as f64 + 0.47) / PROBES as f64,
-                ]
-            })
-            .collect();
+impl Racer {
+    /// A readable name for legends.
+    pub fn label(&self) -> &'static str {
+        match self.name {
+            "automaton-sor" => "Automaton, four-colour SOR",
+            _ => solver_name(self.kind),
+        }
+    }
+}
+
+/// One solver's run.
+pub struct RaceRun {
+    pub racer: Racer,
+    pub samples: Vec<Sample>,
+    pub done: bool,
+    pub error: Option<String>,
+    /// x = run time (s), y = log10 of the energy error.
+    pub energy_points: Vec<PlotPoint>,
+    /// x = run time (s), y = log10 of max(K_I, K_II error).
+    pub k_points: Vec<PlotPoint>,
+}
+
+impl RaceRun {
+    fn push(&mut self, s: Sample) {
+        let log = |v: f64| v.max(ENERGY_FLOOR * 1e-3).log10();
+        self.energy_points
+            .push(PlotPoint::new(s.seconds, log(s.energy)));
+        self.k_points
+            .push(PlotPoint::new(s.seconds, log(s.k1.max(s.k2))));
+        self.samples.push(s);
+    }
+
+    pub fn iterations(&self) -> usize {
+        self.samples.last().map_or(0, |s| s.iteration)
+    }
+
+    pub fn seconds(&self) -> f64 {
+        self.samples.last().map_or(0.0, |s| s.seconds)
+    }
+}
+
+/// What the next piece of work is.
+enum Phase {
+    /// Build the discretisation and settle the contact states.
+    Settle,
+    /// Solve directly for the reference.
+    Reference,
+    /// Set up run `i` (an iterative solver).
+    Setup(usize),
+    /// Run `i` is under way.
+    Running(usize, Box<Relaxation>, usize),
+    Finished,
+}
+
+/// The race in progress (or finished).
+pub struct Race {
+    scene: Scene,
+    pub runs: Vec<RaceRun>,
+    /// Solver time after which an iterative run is stopped, s.
+    pub time_cap: f64,
+    phase: Phase,
+    system: Option<RaceSystem>,
+    reference: Option<Reference>,
+}
+
+impl Race {
+    /// A race of [`RACERS`] on `scene` with `time_cap` seconds per solver.
+    pub fn new(scene: &Scene, time_cap: f64) -> Self {
         Self {
             scene: scene.clone(),
-            runs: order
-                .into_iter()
-                .map(|kind| CompareRun {
-                    kind,
-                    points: Vec::new(),
-                    seconds: 0.0,
-                    iterations: 0,
+            runs: RACERS
+                .iter()
+                .map(|&racer| RaceRun {
+                    racer,
+                    samples: Vec::new(),
                     done: false,
                     error: None,
+                    energy_points: Vec::new(),
+                    k_points: Vec::new(),
                 })
                 .collect(),
-            current: 0,
-            sim: None,
-            probes,
+            time_cap: time_cap.max(0.01),
+            phase: Phase::Settle,
+            system: None,
             reference: None,
-            time_limit: 10.0,
         }
     }
 
     pub fn finished(&self) -> bool {
-        self.current >= self.runs.len()
+        matches!(self.phase, Phase::Finished)
     }
 
-    /// Which run is going, for the progress line.
-    pub fn status(&self) -> Option<(SolverKind, f64)> {
-        self.runs.get(self.current).map(|r| (r.kind, r.seconds))
+    /// The run in progress and the race's overall progress in [0, 1].
+    pub fn status(&self) -> Option<(&RaceRun, f32)> {
+        let (i, within) = match &self.phase {
+            Phase::Settle => (0, 0.0),
+            Phase::Reference => (0, 0.5),
+            Phase::Setup(i) => (*i, 0.0),
+            Phase::Running(i, ..) => {
+                let run = &self.runs[*i];
+                let by_time = run.seconds() / self.time_cap;
+                let by_error = run.samples.last().map_or(0.0, |s| {
+                    (s.energy.max(ENERGY_FLOOR).log10() / ENERGY_FLOOR.log10()).max(0.0)
+                });
+                (*i, by_time.max(by_error).min(1.0))
+            }
+            Phase::Finished => return None,
+        };
+        let total = (i as f64 + within) / self.runs.len() as f64;
+        Some((&self.runs[i], total as f32))
     }
 
-    /// Works on the comparison until `deadline`.
+    /// Works on the race until `deadline`; each phase is one resumable
+    /// piece (the setup of a solver is one piece, however long).
     pub fn tick(&mut self, deadline: Instant) {
         while !self.finished() && Instant::now() < deadline {
-            if let Err(e) = self.advance(deadline) {
-                let run = &mut self.runs[self.current];
-                run.error = Some(e);
-                run.done = true;
-            }
-            if self.runs[self.current].done {
-                self.sim = None;
-                self.current += 1;
-            }
+            let phase = std::mem::replace(&mut self.phase, Phase::Finished);
+            self.phase = match self.advance(phase, deadline) {
+                Ok(next) => next,
+                Err((i, e)) => {
+                    let run = &mut self.runs[i];
+                    run.error = Some(e);
+                    run.done = true;
+                    if i == 0 {
+                        // no reference: nothing to race against
+                        for r in &mut self.runs {
+                            r.done = true;
+                        }
+                        Phase::Finished
+                    } else {
+                        self.after(i)
+                    }
+                }
+            };
         }
     }
 
-    fn advance(&mut self, deadline: Instant) -> Result<(), String> {
-        let run = &mut self.runs[self.current];
-        if self.sim.is_none() {
-            let mut scene = self.scene.clone();
-            scene.solver.kind = run.kind;
-            let mut sim = Simulation::new(scene).map_err(|e| e.to_string())?;
-            sim.start_relaxation();
-            self.sim = Some(sim);
+    /// The phase after run `i`.
+    fn after(&self, i: usize) -> Phase {
+        if i + 1 < self.runs.len() {
+            Phase::Setup(i + 1)
+        } else {
+            Phase::Finished
         }
-        let Some(sim) = self.sim.as_mut() else {
-            return Ok(());
-        };
-        let remaining = deadline
-            .saturating_duration_since(Instant::now())
-            .max(Duration::from_millis(1));
-        let n = estimate_sweeps(run, remaining);
-        let t0 = Instant::now();
-        let status = sim.relax(n).map_err(|e| e.to_string())?;
-        run.seconds += t0.elapsed().as_secs_f64();
-        run.iterations = status.iterations;
-        let u: Vec<[f64; 2]> = self
-            .probes
-            .iter()
-            .map(|&p| sim.displacement_at(p).unwrap_or([0.0; 2]))
+    }
+
+    fn advance(&mut self, phase: Phase, deadline: Instant) -> Result<Phase, (usize, String)> {
+        match phase {
+            Phase::Settle => {
+                let params = ContactParams {
+                    tolerance: self.scene.solver.contact_tolerance,
+                    max_iterations: self.scene.solver.max_contact_iterations,
+                    ..ContactParams::default()
+                };
+                let system =
+                    RaceSystem::settle(&self.scene, params).map_err(|e| (0, e.to_string()))?;
+                self.system = Some(system);
+                Ok(Phase::Reference)
+            }
+            Phase::Reference => {
+                let Some(sys) = &self.system else {
+                    return Ok(Phase::Settle);
+                };
+                let spec = self.spec(&self.runs[0].racer);
+                let zero = vec![0.0; sys.x.n_free()];
+                let mut direct =
+                    Relaxation::new(spec.kind, &spec, &sys.x, &sys.blocks, &sys.f, &zero)
+                        .map_err(|e| (0, e.to_string()))?;
+                direct
+                    .run(&sys.x, &sys.blocks, 1, &mut |_| {})
+                    .map_err(|e| (0, e.to_string()))?;
+                let reference = Reference::new(&sys.x, direct.operator(), direct.u());
+                let sample =
+                    reference.sample(&sys.x, direct.operator(), direct.u(), 1, direct.seconds());
+                self.reference = Some(reference);
+                let run = &mut self.runs[0];
+                run.push(sample);
+                run.done = true;
+                Ok(self.after(0))
+            }
+            Phase::Setup(i) => {
+                let (Some(sys), Some(reference)) = (&self.system, &self.reference) else {
+                    return Ok(Phase::Settle);
+                };
+                let spec = self.spec(&self.runs[i].racer);
+                let zero = vec![0.0; sys.x.n_free()];
+                let r = Relaxation::new(spec.kind, &spec, &sys.x, &sys.blocks, &sys.f, &zero)
+                    .map_err(|e| (i, e.to_string()))?;
+                let s = reference.sample(&sys.x, r.operator(), r.u(), 0, r.seconds());
+                self.runs[i].push(s);
+                Ok(Phase::Running(i, Box::new(r), 1))
+            }
+            Phase::Running(i, mut r, next) => {
+                let (Some(sys), Some(reference)) = (&self.system, &self.reference) else {
+                    return Ok(Phase::Settle);
+                };
+                let run = &mut self.runs[i];
+                let status = r.status();
+                // sweeps per call: about a third of what is left of the frame
+                let per_iteration = r.seconds() / status.iterations.max(1) as f64;
+                let left = deadline.saturating_duration_since(Instant::now());
+                let fit = (left.max(Duration::from_micros(100)).as_secs_f64()
+                    / 3.0
+                    / per_iteration.max(1e-7)) as usize;
+                let n = (next - status.iterations).min(fit.max(1));
+                let status = r
+                    .run(&sys.x, &sys.blocks, n, &mut |_| {})
+                    .map_err(|e| (i, e.to_string()))?;
+                if status.iterations < next && !status.converged {
+                    return Ok(Phase::Running(i, r, next));
+                }
+                let s =
+                    reference.sample(&sys.x, r.operator(), r.u(), status.iterations, r.seconds());
+                run.push(s);
+                if status.converged || s.energy <= ENERGY_FLOOR || s.seconds > self.time_cap {
+                    run.done = true;
+                    return Ok(self.after(i));
+                }
+                let next = (next + 1).max((next as f64 * 1.25) as usize);
+                Ok(Phase::Running(i, r, next))
+            }
+            Phase::Finished => Ok(Phase::Finished),
+        }
+    }
+
+    /// The solver settings of `racer` on this scene (tolerance and iteration
+    /// limit out of the way: the race stops on the energy error or the cap).
+    fn spec(&self, racer: &Racer) -> SolverSpec {
+        let n = self.scene.mesh.nx.max(self.scene.mesh.ny) as f64;
+        SolverSpec {
+            kind: racer.kind,
+            ordering: racer.ordering,
+            omega: racer
+                .omega
+                .unwrap_or_else(|| 2.0 / (1.0 + (std::f64::consts::PI / n).sin())),
+            tolerance: 1e-14,
+            max_iterations: usize::MAX,
+            ..self.scene.solver.clone()
+        }
+    }
+
+    /// The race as CSV, with the columns of `cdca bench`'s
+    /// `error_vs_time.csv` (size: elements along x).
+    pub fn to_csv(&self) -> String {
+        let mut s =
+            String::from("scene,size,solver,iteration,seconds,energy_error,k1_error,k2_error\n");
+        let name: String = self
+            .scene
+            .name
+            .chars()
+            .map(|c| {
+                if c == ',' || c == '"' || c == '\n' {
+                    ' '
+                } else {
+                    c
+                }
+            })
             .collect();
-        match &self.reference {
-            None => {
-                run.points
-                    .push(PlotPoint::new(run.seconds, ERROR_FLOOR.log10()));
-                self.reference = Some(u);
-                run.done = true;
-            }
-            Some(reference) => {
-                let e = relative_error(&u, reference).max(ERROR_FLOOR);
-                run.points.push(PlotPoint::new(run.seconds, e.log10()));
-                run.done = status.converged || e <= ERROR_FLOOR || run.seconds > self.time_limit;
+        for r in &self.runs {
+            for p in &r.samples {
+                let _ = writeln!(
+                    s,
+                    "{},{},{},{},{:e},{:e},{:e},{:e}",
+                    name,
+                    self.scene.mesh.nx,
+                    r.racer.name,
+                    p.iteration,
+                    p.seconds,
+                    p.energy,
+                    p.k1,
+                    p.k2
+                );
             }
         }
-        Ok(())
-    }
-}
-
-/// Sweeps for the next call, so a call takes about a third of `remaining`.
-fn estimate_sweeps(run: &CompareRun, remaining: Duration) -> usize {
-    if run.iterations == 0 || run.seconds <= 0.0 {
-        return 1;
-    }
-    let per_sweep = run.seconds / run.iterations as f64;
-    ((remaining.as_secs_f64() / 3.0 / per_sweep) as usize).clamp(1, 10_000)
-}
-
-/// ‖u − r‖ / ‖r‖ over the probes.
-pub fn relative_error(u: &[[f64; 2]], reference: &[[f64; 2]]) -> f64 {
-    let (mut num, mut den) = (0.0, 0.0);
-    for (a, b) in u.iter().zip(reference) {
-        num += (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2);
-        den += b[0] * b[0] + b[1] * b[1];
-    }
-    if den > 0.0 {
-        (num / den).sqrt()
-    } else {
-        num.sqrt()
+        s
     }
 }
 
@@ -176,35 +366,61 @@ mod tests {
     use super::*;
     use crate::scenes::default_scene;
 
+    /// The race on a small scene runs to the end in budgeted ticks: the
+    /// direct reference has zero error against itself (1e-12); every
+    /// iterative run starts at u = 0, where the energy error is exactly 1
+    /// (‖0 − u_ref‖_K / ‖u_ref‖_K; 1e-12), and its error never rises (each
+    /// method decreases the energy norm of the error on an SPD system;
+    /// 1e-9 relative slack for round-off). CG and multigrid-CG reach the
+    /// 1e-11 floor in a few dozen iterations (< 0.1 s here), far inside the
+    /// 0.5 s cap; the automata fall at least tenfold within it.
     #[test]
-    fn direct_runs_first_and_once() {
-        let c = Comparison::new(
-            &default_scene(),
-            &[SolverKind::Automaton, SolverKind::Direct, SolverKind::Cg],
-        );
-        let kinds: Vec<SolverKind> = c.runs.iter().map(|r| r.kind).collect();
-        assert_eq!(
-            kinds,
-            vec![SolverKind::Direct, SolverKind::Automaton, SolverKind::Cg]
-        );
+    fn a_race_on_a_small_scene_starts_cold_and_the_errors_fall() {
+        let mut scene = default_scene();
+        scene.mesh.nx = 12;
+        scene.mesh.ny = 12;
+        let mut race = Race::new(&scene, 0.5);
+        for _ in 0..100_000 {
+            if race.finished() {
+                break;
+            }
+            race.tick(Instant::now() + Duration::from_millis(10));
+        }
+        assert!(race.finished());
+        assert!(race.runs[0].samples[0].energy < 1e-12);
+        for run in &race.runs[1..] {
+            let name = run.racer.name;
+            assert!(run.error.is_none(), "{name}: {:?}", run.error);
+            let e: Vec<f64> = run.samples.iter().map(|s| s.energy).collect();
+            assert_eq!(run.samples[0].iteration, 0);
+            assert!((e[0] - 1.0).abs() < 1e-12, "{name}: {}", e[0]);
+            assert!(
+                e.windows(2).all(|w| w[1] <= w[0] * (1.0 + 1e-9)),
+                "{name}: {e:?}"
+            );
+            let last = e[e.len() - 1];
+            match run.racer.kind {
+                SolverKind::Cg | SolverKind::Multigrid => {
+                    assert!(last <= ENERGY_FLOOR, "{name}: {last:e}");
+                }
+                _ => assert!(last < 0.1, "{name}: {last:e}"),
+            }
+        }
+        let csv = race.to_csv();
+        let rows = race.runs.iter().map(|r| r.samples.len()).sum::<usize>();
+        assert_eq!(csv.lines().count(), rows + 1);
+        assert!(csv.starts_with("scene,size,solver,iteration,seconds,energy_error"));
     }
 
     #[test]
-    fn relative_error_is_zero_on_the_reference_and_scales() {
-        let r = [[1.0, 0.0], [0.0, 1.0]];
-        assert_eq!(relative_error(&r, &r), 0.0);
-        let u = [[1.1, 0.0], [0.0, 1.1]];
-        assert!((relative_error(&u, &r) - 0.1).abs() < 1e-12);
-    }
-
-    #[test]
-    fn probes_stay_inside_the_specimen() {
-        let s = default_scene();
-        let c = Comparison::new(&s, &[]);
-        assert_eq!(c.probes.len(), PROBES * PROBES);
-        assert!(c.probes.iter().all(|p| p[0] > 0.0
-            && p[0] < s.specimen.width
-            && p[1] > 0.0
-            && p[1] < s.specimen.height));
+    fn the_sor_racer_uses_the_optimal_omega_of_the_mesh() {
+        let mut scene = default_scene();
+        scene.mesh.nx = 40;
+        scene.mesh.ny = 40;
+        let race = Race::new(&scene, 1.0);
+        let spec = race.spec(&RACERS[2]);
+        let expected = 2.0 / (1.0 + (std::f64::consts::PI / 40.0).sin());
+        assert!((spec.omega - expected).abs() < 1e-15);
+        assert_eq!(spec.ordering, Ordering::RedBlack);
     }
 }

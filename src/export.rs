@@ -32,12 +32,17 @@ fn mode_name(mode: Mode) -> &'static str {
 /// whether the tip grew, contact counts and solver effort.
 pub fn history_csv(history: &[GrowthStepReport]) -> String {
     let mut out = String::from(
-        "step,load_factor,crack,tip,x_m,y_m,k1_pa_sqrt_m,k2_pa_sqrt_m,t_stress_pa,mode,angle_deg,grew,open,stick,slip,solver_iterations,seconds\n",
+        "step,load_factor,crack,tip,x_m,y_m,k1_pa_sqrt_m,k2_pa_sqrt_m,t_stress_pa,mode,angle_deg,grew,open,stick,slip,solver_iterations,seconds,converged\n",
     );
     for s in history {
         let tail = format!(
-            "{},{},{},{},{:e}",
-            s.contact.open, s.contact.stick, s.contact.slip, s.solver_iterations, s.seconds
+            "{},{},{},{},{:e},{}",
+            s.contact.open,
+            s.contact.stick,
+            s.contact.slip,
+            s.solver_iterations,
+            s.seconds,
+            s.converged
         );
         if s.tips.is_empty() {
             let _ = writeln!(out, "{},{},,,,,,,,,,,{tail}", s.step, s.load_factor);
@@ -195,6 +200,7 @@ mod tests {
                 open: 1,
                 stick: 2,
                 slip: 3,
+                ..ContactCounts::default()
             },
             tips: vec![tip(0), tip(1)],
             ..GrowthStepReport::default()

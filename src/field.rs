@@ -162,7 +162,8 @@ impl FieldSampler {
         self.building = None;
     }
 
-    /// Samples rows of the field `key` from `sim` until `deadline`; returns
+    /// Samples rows of the field `key` from `sim`'s current iterate (the
+    /// solution, or the displacement of a solve under way) until `deadline`; returns
     /// true once the field is complete and current.
     pub fn work(&mut self, sim: &Simulation, key: FieldKey, deadline: Instant) -> bool {
         if self.is_current(&key) {
@@ -204,7 +205,7 @@ fn sample_at(
     [dx, dy]: [f64; 2],
     with_displacement: bool,
 ) -> Sample {
-    let Some(stress) = sim.stress_at(centre) else {
+    let Some(stress) = sim.current_stress_at(centre) else {
         return NAN_SAMPLE;
     };
     let mut corner_disp = [[0.0; 2]; 4];
@@ -214,7 +215,7 @@ fn sample_at(
         let corners = [[-hx, -hy], [hx, -hy], [hx, hy], [-hx, hy]];
         for (u, c) in corner_disp.iter_mut().zip(corners) {
             *u = sim
-                .displacement_at([centre[0] + c[0], centre[1] + c[1]])
+                .current_displacement_at([centre[0] + c[0], centre[1] + c[1]])
                 .unwrap_or([0.0; 2]);
         }
     }

@@ -6,20 +6,24 @@ pub mod app;
 mod apply;
 mod canvas;
 pub mod command;
-mod compare;
+pub mod compare;
 mod edit;
 mod export;
 mod field;
+mod frame_stats;
 mod io;
 mod panels;
 mod persist;
 mod runner;
 pub mod scenes;
 mod solution;
+pub mod study;
 mod units;
+mod view;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
 
-pub use app::{Options, WorkbenchApp};
+pub use app::{Options, StartRun, WorkbenchApp};
 pub use command::Command;
 pub use runner::RunMode;
+pub use view::PlotTab;

@@ -2,8 +2,77 @@
 
 #![cfg_attr(not(debug_assertions), windows_subsystem = "windows")]
 
+/// How to start the workbench from a shell.
+#[cfg(not(target_arch = "wasm32"))]
+const USAGE: &str = "usage: cdca-workbench [SCENE.json] [--run relax|grow|compare]
+
+Opens SCENE.json (default: the last scene) and, with --run, starts the
+relaxation (relax), the growth run (grow) or the solver race (compare)
+after the first solve.";
+
+/// What the command line asks for.
+#[cfg(not(target_arch = "wasm32"))]
+struct Launch {
+    /// (file name, scene) to open.
+    scene: Option<(String, cdca::Scene)>,
+    run: Option<cdca_workbench::StartRun>,
+}
+
+/// Parses the command line (without the program name). `Ok(None)`: help
+/// was asked for.
+#[cfg(not(target_arch = "wasm32"))]
+fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Option<Launch>, String> {
+    use cdca_workbench::StartRun;
+    let mut launch = Launch {
+        scene: None,
+        run: None,
+    };
+    while let Some(arg) = args.next() {
+        match arg.as_str() {
+            "-h" | "--help" => return Ok(None),
+            "--run" => {
+                let what = args.next().ok_or("--run needs relax, grow or compare")?;
+                launch.run = Some(match what.as_str() {
+                    "relax" => StartRun::Relax,
+                    "grow" => StartRun::Grow,
+                    "compare" => StartRun::Compare,
+                    other => {
+                        return Err(format!("--run {other}: expected relax, grow or compare"));
+                    }
+                });
+            }
+            flag if flag.starts_with('-') => return Err(format!("unknown option {flag}")),
+            path => {
+                if launch.scene.is_some() {
+                    return Err(format!("{path}: only one scene file can be opened"));
+                }
+                let text = std::fs::read_to_string(path)
+                    .map_err(|e| format!("cannot read {path}: {e}"))?;
+                let scene = cdca::Scene::from_json(&text)
+                    .map_err(|e| format!("{path} is not a valid scene: {e}"))?;
+                let name = std::path::Path::new(path)
+                    .file_name()
+                    .map_or_else(|| path.to_owned(), |n| n.to_string_lossy().into_owned());
+                launch.scene = Some((name, scene));
+            }
+        }
+    }
+    Ok(Some(launch))
+}
+
 #[cfg(not(target_arch = "wasm32"))]
 fn main() -> eframe::Result {
+    let launch = match parse_args(std::env::args().skip(1)) {
+        Ok(Some(launch)) => launch,
+        Ok(None) => {
+            println!("{USAGE}");
+            return Ok(());
+        }
+        Err(e) => {
+            eprintln!("cdca-workbench: {e}\n\n{USAGE}");
+            std::process::exit(2);
+        }
+    };
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("CDCA workbench")
@@ -14,10 +83,12 @@ fn main() -> eframe::Result {
     eframe::run_native(
         "cdca-workbench",
         options,
-        Box::new(|cc| {
-            Ok(Box::new(
-                cdca_workbench::WorkbenchApp::from_creation_context(cc),
-            ))
+        Box::new(move |cc| {
+            Ok(Box::new(cdca_workbench::WorkbenchApp::launch(
+                cc,
+                launch.scene,
+                launch.run,
+            )))
         }),
     )
 }

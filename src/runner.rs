@@ -17,10 +17,40 @@ pub enum RunMode {
     Relaxing,
     /// Growth steps each frame until the run ends.
     Growing,
+    /// One growth step, then the solve of the grown cracks, then pause.
+    GrowingOne,
 }
 
-/// The simulation and everything derived from it.
-#[derive(Default)]
+/// Relative residual to which iterative solvers solve in growth: the
+/// criterion needs the SIFs and the kink angle, and on the default scene
+/// this tolerance gives K_I and K_II within 1e-6 relative of the direct
+/// solution and the same angles to 0.001° (automaton and multigrid-CG,
+/// measured with `cdca solve`); the contact tolerance (1e-8) is not
+/// reachable with a looser linear solve.
+pub const GROWTH_TOLERANCE: f64 = 1e-8;
+
+/// While a run goes on, the canvas's field follows the solver at most this
+/// often (sampled coarsely, one sample per element), s.
+pub const LIVE_FIELD_INTERVAL: f64 = 0.15;
+
+/// The solver settings used in growth: iterative solvers at
+/// [`GROWTH_TOLERANCE`]; with `accelerate`, the plain automaton replaced by
+/// its multigrid-accelerated form (CG with the automaton's sweeps as
+/// smoother and a coarse-grid correction).
+pub fn growth_solver(spec: &cdca::scene::SolverSpec, accelerate: bool) -> cdca::scene::SolverSpec {
+    let mut spec = spec.clone();
+    if spec.kind != SolverKind::Direct {
+        spec.tolerance = GROWTH_TOLERANCE;
+    }
+    if accelerate && spec.kind == SolverKind::Automaton {
+        spec.kind = SolverKind::Multigrid;
+    }
+    spec
+}
+
+/// The simulation and everything derived from it. (Independent flags,
+/// so bools.)
+#[allow(clippy::struct_excessive_bools)]
 pub struct Runner {
     sim: Option<Simulation>,
     pub mode: RunMode,
@@ -38,6 +68,39 @@ pub struct Runner {
     pub last_build_seconds: f64,
     /// Solver time spent in the last frame, s.
     pub frame_solver_seconds: f64,
+    /// Sweeps per frame while relaxing or growing (None: as many as the
+    /// frame budget allows).
+    pub pace: Option<usize>,
+    /// Growth with the automaton runs the multigrid-accelerated automaton.
+    pub accelerate_growth: bool,
+    /// The growth solver settings were applied to the current simulation.
+    growth_ready: bool,
+    /// The solution version the canvas's field shows (or is sampling).
+    field_version: u64,
+    /// When the field last moved to a newer version.
+    field_moved_at: Option<Instant>,
+}
+
+impl Default for Runner {
+    fn default() -> Self {
+        Self {
+            sim: None,
+            mode: RunMode::Paused,
+            relaxation_started: false,
+            sweeps_per_call: 1,
+            view: SolutionView::default(),
+            field: FieldSampler::default(),
+            stale: false,
+            last_solve_seconds: None,
+            last_build_seconds: 0.0,
+            frame_solver_seconds: 0.0,
+            pace: None,
+            accelerate_growth: true,
+            growth_ready: false,
+            field_version: 0,
+            field_moved_at: None,
+        }
+    }
 }
 
 /// Full solves faster than this are redone automatically after an edit.
@@ -50,6 +113,7 @@ impl Runner {
         self.sim = None;
         self.mode = RunMode::Paused;
         self.relaxation_started = false;
+        self.growth_ready = false;
         self.view.clear();
         self.field.clear();
         self.stale = true;
@@ -114,33 +178,49 @@ impl Runner {
         self.relax_chunk(1).map(|_| ())
     }
 
-    /// One whole growth step (a button press).
-    pub fn grow_one(&mut self) -> Result<(), String> {
-        self.mode = RunMode::Paused;
-        let Some(sim) = self.sim.as_mut() else {
+    /// Starts growth (`one`: a single step, then the solve of the grown
+    /// cracks): before the first step, the simulation is rebuilt unloaded
+    /// with the growth solver settings ([`growth_solver`]), so that the
+    /// load ramps up from zero as in `cdca grow` (a state solved at full
+    /// load carries its friction history into the first, lower, load
+    /// increment, where the contact iteration then fails to settle).
+    pub fn start_growth(&mut self, one: bool) -> Result<(), String> {
+        let Some(sim) = self.sim.as_ref() else {
             return Ok(());
         };
-        let result = if sim.growth_finished().is_some() {
-            Ok(())
+        if !self.growth_ready && sim.history().is_empty() {
+            let spec = growth_solver(&sim.scene().solver, self.accelerate_growth);
+            if spec != sim.scene().solver || sim.is_solved() || sim.is_relaxing() {
+                let mut scene = sim.scene().clone();
+                scene.solver = spec;
+                let start = Instant::now();
+                let sim = Simulation::new(scene).map_err(|e| e.to_string())?;
+                self.last_build_seconds = start.elapsed().as_secs_f64();
+                self.sim = Some(sim);
+                self.relaxation_started = false;
+                self.refresh(false, None);
+            }
+        }
+        self.growth_ready = true;
+        self.mode = if one {
+            RunMode::GrowingOne
         } else {
-            // the step, then the re-solve of the grown cracks at the same
-            // load (SPEC §9), so that the field of the new geometry shows
-            sim.grow_step()
-                .and_then(|_| {
-                    if sim.is_solved() {
-                        Ok(())
-                    } else {
-                        sim.solve().map(|_| ())
-                    }
-                })
-                .map_err(|e| e.to_string())
+            RunMode::Growing
         };
-        self.relaxation_started = false;
-        self.refresh(true, None);
-        result
+        Ok(())
     }
 
-    /// Runs `n` sweeps; returns whether the relaxation converged.
+    /// The solver growth uses (or will use) on this simulation, or on a
+    /// simulation of `scene` when none is built yet.
+    pub fn growth_solver_kind(&self, scene: &Scene) -> SolverKind {
+        match &self.sim {
+            Some(sim) if self.growth_ready || !sim.history().is_empty() => sim.scene().solver.kind,
+            Some(sim) => growth_solver(&sim.scene().solver, self.accelerate_growth).kind,
+            None => growth_solver(&scene.solver, self.accelerate_growth).kind,
+        }
+    }
+
+    /// Runs `n` sweeps; returns whether the relaxation has finished (converged or capped).
     fn relax_chunk(&mut self, n: usize) -> Result<bool, String> {
         let Some(sim) = self.sim.as_mut() else {
             return Ok(true);
@@ -151,42 +231,77 @@ impl Runner {
         }
         let result = sim.relax(n);
         let status = result.as_ref().ok().copied();
-        self.refresh(true, status);
+        let solved = sim.is_solved();
+        self.refresh(solved, status);
         let status = result.map_err(|e| e.to_string())?;
-        Ok(status.converged)
+        Ok(status.finished)
     }
 
     /// Growth until `deadline`, in resumable chunks (a few solver sweeps or
     /// one contact iteration each; the chunk that completes a step also
-    /// extends the tips and rebuilds the discretisation); returns whether
-    /// the run ended.
-    fn grow_chunk(&mut self, deadline: Instant) -> Result<bool, String> {
+    /// extends the tips and rebuilds the discretisation); with a pace, one
+    /// chunk of that many sweeps. `one`: stop after one step, once the
+    /// grown cracks are solved. Returns whether the run ended.
+    fn grow_chunk(&mut self, deadline: Instant, one: bool) -> Result<bool, String> {
         let Some(sim) = self.sim.as_mut() else {
             return Ok(true);
         };
+        let steps = sim.history().len();
+        let n = self.pace.unwrap_or(self.sweeps_per_call).max(1);
         let mut result = Ok(false);
         loop {
             if sim.growth_finished().is_some() {
                 result = Ok(true);
                 break;
             }
-            if let Err(e) = sim.advance_growth(self.sweeps_per_call.max(1)) {
-                result = Err(e.to_string());
+            let t0 = Instant::now();
+            match sim.advance_growth(n) {
+                Err(e) => {
+                    result = Err(e.to_string());
+                    break;
+                }
+                Ok(report) => {
+                    if one && report.is_none() && sim.history().len() > steps && sim.is_solved() {
+                        result = Ok(true);
+                        break;
+                    }
+                }
+            }
+            if self.pace.is_some() {
                 break;
             }
-            if Instant::now() >= deadline {
+            // a call of about a quarter of the budget left
+            let now = Instant::now();
+            if now >= deadline {
                 break;
             }
+            let per_sweep = (now - t0).as_secs_f64() / n as f64;
+            let left = (deadline - now).as_secs_f64();
+            self.sweeps_per_call = ((0.25 * left / per_sweep.max(1e-7)) as usize).clamp(1, 10_000);
         }
         let finished = sim.growth_finished().is_some();
         self.relaxation_started = false;
-        // the view follows solved states; while a grown geometry is being
-        // solved it keeps showing the last converged field
         let solved = sim.is_solved();
-        if solved || finished || result.is_err() {
-            self.refresh(solved, None);
-        }
+        self.refresh(solved, None);
         result.map(|done| done || finished)
+    }
+
+    /// The solution version the canvas's field should show: the latest
+    /// when paused; while a run goes on, the latest at most every
+    /// [`LIVE_FIELD_INTERVAL`] and only once the previous field is complete,
+    /// so that sampling takes a small share of the frames.
+    pub fn field_version(&mut self) -> u64 {
+        let now = Instant::now();
+        let due = self.mode == RunMode::Paused
+            || (self.field.progress().is_none()
+                && self
+                    .field_moved_at
+                    .is_none_or(|t| (now - t).as_secs_f64() >= LIVE_FIELD_INTERVAL));
+        if due && self.field_version != self.view.version {
+            self.field_version = self.view.version;
+            self.field_moved_at = Some(now);
+        }
+        self.field_version
     }
 
     fn refresh(&mut self, solved: bool, relax: Option<cdca::RelaxStatus>) {
@@ -195,29 +310,34 @@ impl Runner {
         }
     }
 
-    /// The frame's share of work within `budget`: either sampling the field
-    /// of the current state (so what is shown is consistent), or solver work
-    /// in the run mode, never both: one growth step can take most of a
-    /// frame by itself. Returns an error to show.
+    /// The frame's share of work within `budget`: first sampling the field
+    /// of the current state (the solver waits until a field is complete, so
+    /// what is shown is consistent), then solver work in the run mode with
+    /// what is left. While a run goes on the field is coarse and refreshed
+    /// at most every [`LIVE_FIELD_INTERVAL`], so the solver advances every
+    /// frame. Returns an error to show.
     pub fn tick(&mut self, budget: Duration, field_key: Option<FieldKey>) -> Result<(), String> {
         let start = Instant::now();
         let deadline = start + budget;
         self.frame_solver_seconds = 0.0;
         if let (Some(sim), Some(key)) = (&self.sim, field_key)
-            && self.view.solved
+            && self.view.has_field()
             && !self.field.is_current(&key)
         {
-            self.field.work(sim, key, deadline);
-            self.frame_solver_seconds = start.elapsed().as_secs_f64();
-            return Ok(());
+            let complete = self.field.work(sim, key, deadline);
+            if !complete || self.mode == RunMode::Paused {
+                self.frame_solver_seconds = start.elapsed().as_secs_f64();
+                return Ok(());
+            }
         }
-        if Instant::now() >= deadline {
+        if self.mode == RunMode::Paused {
             return Ok(());
         }
         let outcome = match self.mode {
             RunMode::Paused => Ok(false),
             RunMode::Relaxing => self.relax_for(deadline),
-            RunMode::Growing => self.grow_chunk(deadline),
+            RunMode::Growing => self.grow_chunk(deadline, false),
+            RunMode::GrowingOne => self.grow_chunk(deadline, true),
         };
         self.frame_solver_seconds = start.elapsed().as_secs_f64();
         match outcome {
@@ -234,8 +354,12 @@ impl Runner {
     }
 
     /// Relaxation sweeps until `deadline`, adapting the sweeps per call so
-    /// that one call takes about a quarter of the remaining budget.
+    /// that one call takes about a quarter of the remaining budget; with a
+    /// pace, that many sweeps.
     fn relax_for(&mut self, deadline: Instant) -> Result<bool, String> {
+        if let Some(n) = self.pace {
+            return self.relax_chunk(n.max(1));
+        }
         loop {
             let t0 = Instant::now();
             let n = self.sweeps_per_call.max(1);

@@ -13,7 +13,7 @@ pub struct Bundled {
 }
 
 /// The scene the workbench opens on first start.
-pub const DEFAULT_TITLE: &str = "Closed crack under biaxial compression";
+pub const DEFAULT_TITLE: &str = "Single flaw under uniaxial compression";
 
 macro_rules! bundled {
     ($title:literal, $file:literal) => {
@@ -26,6 +26,10 @@ macro_rules! bundled {
 
 /// Every bundled scene, the default first.
 pub const BUNDLED: &[Bundled] = &[
+    bundled!(
+        "Single flaw under uniaxial compression",
+        "specimen_single_flaw.json"
+    ),
     bundled!(
         "Closed crack under biaxial compression",
         "closed_crack_biaxial.json"
@@ -72,7 +76,8 @@ pub const BUNDLED: &[Bundled] = &[
     ),
 ];
 
-/// The default scene (a closed inclined crack under biaxial compression).
+/// The default scene (a single closed flaw in the 30 mm specimen under
+/// uniaxial compression, growth to failure).
 pub fn default_scene() -> Scene {
     BUNDLED
         .iter()
@@ -154,6 +159,6 @@ mod tests {
         let s = default_scene();
         assert_eq!(s.cracks.len(), 1);
         assert!(s.cracks[0].friction > 0.0, "a closed crack with friction");
-        assert_eq!((s.mesh.nx, s.mesh.ny), (40, 40));
+        assert_eq!((s.mesh.nx, s.mesh.ny), (60, 60));
     }
 }

@@ -4,7 +4,7 @@
 //! refreshes it after each piece of solver work.
 
 use cdca::report::{GrowthStepReport, Outcome, TipReport};
-use cdca::{ContactPointView, RelaxStatus, Simulation};
+use cdca::{ContactPointView, RelaxStatus, ResidualSample, Simulation};
 use egui_plot::PlotPoint;
 
 /// Longest series handed to a plot; longer histories are decimated.
@@ -15,8 +15,11 @@ const MAX_PLOT_POINTS: usize = 2000;
 pub struct SolutionView {
     /// Bumped every time the solver's state changes; caches key on it.
     pub version: u64,
-    /// A displacement field exists (stresses and displacements can be sampled).
+    /// The displacement is a solution of the current cracks and load.
     pub solved: bool,
+    /// A solve is under way: the displacement is its current iterate (the
+    /// canvas shows it live).
+    pub live: bool,
     /// Crack polylines as simulated (grown segments included), m.
     pub cracks: Vec<Vec<[f64; 2]>>,
     /// Every free tip after the last solve.
@@ -28,6 +31,8 @@ pub struct SolutionView {
     pub residual_by_time: Vec<PlotPoint>,
     /// Number of residual samples before decimation.
     pub residual_samples: usize,
+    /// The last residual sample of the current solve.
+    pub last_residual: Option<ResidualSample>,
     pub history: Vec<GrowthStepReport>,
     pub load_factor: f64,
     pub outcome: Option<Outcome>,
@@ -37,10 +42,12 @@ pub struct SolutionView {
 
 impl SolutionView {
     /// Copies what the UI needs from `sim`. `solved` says whether the
-    /// simulation holds a displacement field.
+    /// simulation holds a solution; while a solve is under way its iterate
+    /// (field and contact states) is shown too.
     pub fn refresh(&mut self, sim: &Simulation, solved: bool, relax: Option<RelaxStatus>) {
         self.version += 1;
         self.solved = solved;
+        self.live = !solved && sim.is_relaxing();
         self.relax = relax;
         self.cracks = sim.cracks();
         self.load_factor = sim.load_factor();
@@ -51,6 +58,7 @@ impl SolutionView {
         }
         let samples = sim.residual_history();
         self.residual_samples = samples.len();
+        self.last_residual = samples.last().copied();
         let log = |r: f64| r.max(1e-300).log10();
         self.residual_by_sweep = decimate(samples, |s| {
             PlotPoint::new(s.iteration as f64, log(s.residual))
@@ -58,11 +66,20 @@ impl SolutionView {
         self.residual_by_time = decimate(samples, |s| PlotPoint::new(s.seconds, log(s.residual)));
         if solved {
             self.tips = sim.tips().to_vec();
-            self.contact = sim.contact_points();
         } else {
             self.tips.clear();
+        }
+        if solved || self.live {
+            self.contact = sim.contact_points();
+        } else {
             self.contact.clear();
         }
+    }
+
+    /// A displacement field can be sampled: a solution, or the iterate of
+    /// a solve under way.
+    pub fn has_field(&self) -> bool {
+        self.solved || self.live
     }
 
     /// Forgets everything (a new scene), keeping the version counter rising.

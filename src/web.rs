@@ -9,9 +9,10 @@
 use wasm_bindgen::JsValue;
 use web_time::{Duration, Instant};
 
-use crate::app::{Message, WorkbenchApp};
+use crate::app::WorkbenchApp;
 use crate::command::Command;
 use crate::io;
+use crate::view::Message;
 
 /// How often frame statistics are logged while the app is busy.
 const REPORT_EVERY: Duration = Duration::from_secs(2);

@@ -278,7 +278,9 @@ impl Canvas {
         let s = input.settings;
         let scene = input.scene;
         let wants_field = s.field != FieldKind::None || s.deformed;
-        let field = input.field.filter(|_| wants_field && input.solution.solved);
+        // the last sampled field: a solution, or the iterate of a solve
+        // under way (the runner forgets it when the scene changes)
+        let field = input.field.filter(|_| wants_field);
         symbols::paint_outline(painter, &view, scene, true);
         if let Some(samples) = field {
             self.deform_scale_used = if s.deformed {

@@ -3,20 +3,20 @@
 
 use egui::{Key, KeyboardShortcut, Modifiers, Rect, Ui};
 
-use crate::app::{Message, WorkbenchApp};
 use crate::command::{Command, Export};
 use crate::edit::Tool;
 use crate::field::FieldKind;
-use crate::panels::FrameStats;
+use crate::frame_stats::FrameStats;
 use crate::scenes::BUNDLED;
 use crate::units;
+use crate::view::{AppView, Message, ViewState};
 
 const UNDO: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Z);
 const REDO: KeyboardShortcut =
     KeyboardShortcut::new(Modifiers::COMMAND.plus(Modifiers::SHIFT), Key::Z);
 const REDO_Y: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Y);
 
-pub fn menu_bar_ui(ui: &mut Ui, app: &mut WorkbenchApp, cmds: &mut Vec<Command>) {
+pub fn menu_bar_ui(ui: &mut Ui, v: &AppView, s: &mut ViewState, cmds: &mut Vec<Command>) {
     shortcuts(ui, cmds);
     egui::MenuBar::new().ui(ui, |ui| {
         ui.menu_button("File", |ui| {
@@ -39,6 +39,7 @@ pub fn menu_bar_ui(ui: &mut Ui, app: &mut WorkbenchApp, cmds: &mut Vec<Command>)
                 ("Export growth history (CSV)…", Export::History),
                 ("Export fields (VTK .vtu)…", Export::Fields),
                 ("Export canvas (PNG)…", Export::CanvasPng),
+                ("Export solver race (CSV)…", Export::Race),
             ];
             for (label, what) in exports {
                 if ui.button(label).clicked() {
@@ -48,14 +49,14 @@ pub fn menu_bar_ui(ui: &mut Ui, app: &mut WorkbenchApp, cmds: &mut Vec<Command>)
         });
         ui.menu_button("Edit", |ui| {
             let undo = ui.add_enabled(
-                app.undo.can_undo(),
+                v.can_undo,
                 egui::Button::new("Undo").shortcut_text(ui.ctx().format_shortcut(&UNDO)),
             );
             if undo.clicked() {
                 cmds.push(Command::Undo);
             }
             let redo = ui.add_enabled(
-                app.undo.can_redo(),
+                v.can_redo,
                 egui::Button::new("Redo").shortcut_text(ui.ctx().format_shortcut(&REDO)),
             );
             if redo.clicked() {
@@ -64,18 +65,18 @@ pub fn menu_bar_ui(ui: &mut Ui, app: &mut WorkbenchApp, cmds: &mut Vec<Command>)
         });
         ui.menu_button("View", |ui| {
             if ui.button("Fit specimen").clicked() {
-                app.canvas.fit_requested = true;
+                *s.fit_requested = true;
             }
-            ui.checkbox(&mut app.settings.frame_overlay, "Frame-time overlay");
-            ui.checkbox(&mut app.settings.clip_range, "Colour range 1–99 %");
+            ui.checkbox(&mut s.settings.frame_overlay, "Frame-time overlay");
+            ui.checkbox(&mut s.settings.clip_range, "Colour range 1–99 %");
             ui.horizontal(|ui| {
                 let l = ui.label("Field samples per element side");
-                ui.add(egui::DragValue::new(&mut app.settings.samples_per_cell).range(1..=4))
+                ui.add(egui::DragValue::new(&mut s.settings.samples_per_cell).range(1..=4))
                     .labelled_by(l.id);
             });
         });
         ui.separator();
-        ui.label(format!("Scene: {}", app.scene_source));
+        ui.label(format!("Scene: {}", v.scene_source));
     });
 }
 
@@ -92,9 +93,9 @@ fn shortcuts(ui: &mut Ui, cmds: &mut Vec<Command>) {
     });
 }
 
-pub fn toolbar_ui(ui: &mut Ui, app: &mut WorkbenchApp, cmds: &mut Vec<Command>) {
+pub fn toolbar_ui(ui: &mut Ui, v: &AppView, state: &mut ViewState, cmds: &mut Vec<Command>) {
     ui.horizontal_wrapped(|ui| {
-        let editor = &mut app.editor;
+        let editor = &mut *state.editor;
         if ui
             .selectable_label(editor.tool == Tool::Select, "Select")
             .clicked()
@@ -111,19 +112,19 @@ pub fn toolbar_ui(ui: &mut Ui, app: &mut WorkbenchApp, cmds: &mut Vec<Command>) 
             editor.drawing.clear();
         }
         if ui
-            .add_enabled(app.undo.can_undo(), egui::Button::new("Undo"))
+            .add_enabled(v.can_undo, egui::Button::new("Undo"))
             .clicked()
         {
             cmds.push(Command::Undo);
         }
         if ui
-            .add_enabled(app.undo.can_redo(), egui::Button::new("Redo"))
+            .add_enabled(v.can_redo, egui::Button::new("Redo"))
             .clicked()
         {
             cmds.push(Command::Redo);
         }
         ui.separator();
-        let s = &mut app.settings;
+        let s = &mut *state.settings;
         egui::ComboBox::from_label("Field")
             .selected_text(s.field.label())
             .show_ui(ui, |ui| {
@@ -133,7 +134,7 @@ pub fn toolbar_ui(ui: &mut Ui, app: &mut WorkbenchApp, cmds: &mut Vec<Command>) 
             });
         ui.checkbox(&mut s.show_mesh, "Mesh");
         ui.checkbox(&mut s.show_loads, "Loads & supports");
-        if !app.scene.cracks.is_empty() {
+        if !v.scene.cracks.is_empty() {
             ui.checkbox(&mut s.show_contact, "Contact");
             if s.show_contact {
                 ui.checkbox(&mut s.show_traction_arrows, "Traction arrows");
@@ -141,7 +142,7 @@ pub fn toolbar_ui(ui: &mut Ui, app: &mut WorkbenchApp, cmds: &mut Vec<Command>) 
         }
         ui.checkbox(&mut s.deformed, "Deformed");
         if s.deformed {
-            let mut scale = s.deform_scale.unwrap_or(app.canvas.deform_scale_used);
+            let mut scale = s.deform_scale.unwrap_or(v.deform_scale_used);
             let speed = scale.abs() * 0.01 + 0.1;
             let l = ui.label("scale ×");
             let r = ui

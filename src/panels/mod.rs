@@ -1,13 +1,10 @@
-//! Side, top and bottom panels. Each reads the app's state and pushes
-//! [`crate::Command`]s; view-only settings (what to draw) are edited in place.
+//! Side, top and bottom panels. Each reads a [`crate::view::AppView`] and
+//! pushes [`crate::Command`]s; view-only settings (what to draw) are edited
+//! in place through a [`crate::view::ViewState`]. No panel sees the app.
 
-mod frame_stats;
 pub mod menu;
 pub mod plots;
 pub mod scene;
 pub mod solver;
 pub mod tip;
 mod widgets;
-
-pub use frame_stats::FrameStats;
-pub use plots::PlotTab;

@@ -1,7 +1,8 @@
 //! Scene parameters: specimen and mesh, material, boundary, cracks,
 //! criterion and growth. Only what the current scene can use is shown.
 
-use cdca::scene::{CriterionKind, Fix, Plane, Sampling, SideBc};
+use cdca::fracture::criterion::radius_and_strength;
+use cdca::scene::{CriterionKind, Fix, Material, Plane, Sampling, ShearStrength, SideBc};
 use cdca::{ContactState, Scene};
 use egui::{CollapsingHeader, Grid, Ui};
 
@@ -316,7 +317,6 @@ fn cracks_ui(
 }
 
 fn criterion_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
-    let h = s.element_size();
     CollapsingHeader::new("Fracture criterion")
         .default_open(false)
         .show(ui, |ui| {
@@ -332,10 +332,14 @@ fn criterion_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
                 ],
             );
             Grid::new("criterion").num_columns(2).show(ui, |ui| {
-                optional_row(ui, t, "Radius r0", &mut c.r0, 3.0 * h, MM, "mm");
+                let (auto_r0, _) = radius_and_strength(None, &s.material);
+                optional_row(ui, t, "Radius r0", &mut c.r0, auto_r0, MM, "mm");
                 if c.kind == CriterionKind::Comprehensive {
-                    let r0 = c.r0.unwrap_or(3.0 * h);
-                    let auto = s.material.k_ic / (2.0 * std::f64::consts::PI * r0).sqrt();
+                    let without = Material {
+                        tensile_strength: None,
+                        ..s.material.clone()
+                    };
+                    let (_, auto) = radius_and_strength(c.r0, &without);
                     optional_row(
                         ui,
                         t,
@@ -353,8 +357,18 @@ fn criterion_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
                     "Sampling",
                     &mut c.sampling,
                     &[
+                        (Sampling::Hybrid, "K-field + face stress"),
                         (Sampling::Field, "computed field"),
                         (Sampling::Williams, "Williams expansion"),
+                    ],
+                );
+                choice(
+                    ui,
+                    "Shear strength",
+                    &mut c.shear_strength,
+                    &[
+                        (ShearStrength::Faces, "faces' μ, c + K_IIC"),
+                        (ShearStrength::Rock, "rock's φ, c"),
                     ],
                 );
             }
@@ -362,7 +376,8 @@ fn criterion_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
 }
 
 fn growth_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
-    let r0 = s.criterion.r0.unwrap_or(3.0 * s.element_size());
+    let (r0, _) = radius_and_strength(s.criterion.r0, &s.material);
+    let r0 = cdca::fracture::growth::default_increment(r0, s.element_size());
     CollapsingHeader::new("Growth")
         .default_open(false)
         .show(ui, |ui| {

@@ -5,11 +5,11 @@ use cdca::scene::{Ordering, SolverKind};
 use egui::{Grid, ProgressBar, Ui};
 
 use super::widgets::{EditTracker, choice, count_row, quantity_row};
-use crate::app::WorkbenchApp;
 use crate::command::Command;
 use crate::compare::solver_name;
 use crate::runner::RunMode;
 use crate::units;
+use crate::view::AppView;
 
 pub const SOLVERS: [SolverKind; 4] = [
     SolverKind::Direct,
@@ -18,17 +18,18 @@ pub const SOLVERS: [SolverKind; 4] = [
     SolverKind::Multigrid,
 ];
 
-pub fn solver_ui(ui: &mut Ui, app: &WorkbenchApp, cmds: &mut Vec<Command>) {
+/// The solver panel; `race_time_cap` (s) is the race's time cap per solver.
+pub fn solver_ui(ui: &mut Ui, v: &AppView, race_time_cap: &mut f64, cmds: &mut Vec<Command>) {
     ui.heading("Solver");
-    settings_ui(ui, app, cmds);
+    settings_ui(ui, v, cmds);
     ui.separator();
-    controls_ui(ui, app, cmds);
+    controls_ui(ui, v, race_time_cap, cmds);
     ui.separator();
-    status_ui(ui, app);
+    status_ui(ui, v);
 }
 
-fn settings_ui(ui: &mut Ui, app: &WorkbenchApp, cmds: &mut Vec<Command>) {
-    let mut draft = app.scene.clone();
+fn settings_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
+    let mut draft = v.scene.clone();
     let mut t = EditTracker::default();
     let options: Vec<(SolverKind, &str)> = SOLVERS.iter().map(|&k| (k, solver_name(k))).collect();
     choice(ui, "Linear solver", &mut draft.solver.kind, &options);
@@ -62,7 +63,7 @@ fn settings_ui(ui: &mut Ui, app: &WorkbenchApp, cmds: &mut Vec<Command>) {
                 0.01..=1.99,
             );
         }
-        if !app.scene.cracks.is_empty() {
+        if !v.scene.cracks.is_empty() {
             quantity_row(
                 ui,
                 &mut t,
@@ -92,7 +93,7 @@ fn settings_ui(ui: &mut Ui, app: &WorkbenchApp, cmds: &mut Vec<Command>) {
             ],
         );
     }
-    if draft != app.scene {
+    if draft != *v.scene {
         cmds.push(Command::SetScene {
             scene: Box::new(draft),
             ongoing: t.ongoing,
@@ -102,10 +103,10 @@ fn settings_ui(ui: &mut Ui, app: &WorkbenchApp, cmds: &mut Vec<Command>) {
     }
 }
 
-fn controls_ui(ui: &mut Ui, app: &WorkbenchApp, cmds: &mut Vec<Command>) {
-    let mode = app.runner.mode;
+fn controls_ui(ui: &mut Ui, v: &AppView, race_time_cap: &mut f64, cmds: &mut Vec<Command>) {
+    let mode = v.run.mode;
     let paused = mode == RunMode::Paused;
-    let iterative = app.scene.solver.kind != SolverKind::Direct;
+    let iterative = v.scene.solver.kind != SolverKind::Direct;
     ui.horizontal_wrapped(|ui| {
         let buttons: [(&str, &str, Command, bool); 4] = [
             (
@@ -144,7 +145,7 @@ fn controls_ui(ui: &mut Ui, app: &WorkbenchApp, cmds: &mut Vec<Command>) {
         }
     });
     ui.horizontal_wrapped(|ui| {
-        let finished = app.runner.view.outcome.is_some();
+        let finished = v.solution.outcome.is_some();
         if ui
             .add_enabled(paused && !finished, egui::Button::new("Run growth"))
             .clicked()
@@ -165,21 +166,79 @@ fn controls_ui(ui: &mut Ui, app: &WorkbenchApp, cmds: &mut Vec<Command>) {
             cmds.push(Command::Reset);
         }
     });
-    if ui
-        .button("Compare solvers")
-        .on_hover_text("Error against run time of every solver on this scene")
-        .clicked()
-    {
-        cmds.push(Command::CompareSolvers(SOLVERS.to_vec()));
+    pace_ui(ui, v, cmds);
+    ui.horizontal(|ui| {
+        if ui
+            .button("Compare solvers")
+            .on_hover_text(
+                "Race every solver from u = 0 on this scene: error against the direct solution over run time",
+            )
+            .clicked()
+        {
+            cmds.push(Command::CompareSolvers {
+                time_cap: *race_time_cap,
+            });
+        }
+        let l = ui.label("cap");
+        ui.add(
+            egui::DragValue::new(race_time_cap)
+                .range(0.1..=600.0)
+                .speed(0.1)
+                .suffix(" s"),
+        )
+        .labelled_by(l.id)
+        .on_hover_text("Time cap of each iterative solver in the race");
+    });
+}
+
+/// Sweeps per frame, and the growth solver.
+fn pace_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
+    let iterative = v.scene.solver.kind != SolverKind::Direct;
+    if iterative {
+        ui.horizontal(|ui| {
+            let mut paced = v.run.pace.is_some();
+            let mut n = v.run.pace.unwrap_or(10);
+            let check = ui
+                .checkbox(&mut paced, "Sweeps per frame")
+                .on_hover_text(
+                    "Slow the relaxation down to watch the stress front move: this many sweeps per frame (unticked: as many as the frame allows)",
+                );
+            let dragged = ui
+                .add_enabled(paced, egui::DragValue::new(&mut n).range(1..=10_000))
+                .labelled_by(check.id)
+                .changed();
+            let changed = check.changed();
+            if changed || dragged {
+                cmds.push(Command::SetPace(paced.then_some(n)));
+            }
+        });
+    }
+    if v.scene.solver.kind == SolverKind::Automaton {
+        let mut on = v.run.accelerate_growth;
+        if ui
+            .checkbox(&mut on, "Accelerate growth (multigrid-CG)")
+            .on_hover_text(
+                "Growth solves with the automaton's sweeps inside multigrid-preconditioned CG (tens of iterations instead of tens of thousands of sweeps); untick for the plain automaton. Applies from the next growth run (Reset).",
+            )
+            .changed()
+        {
+            cmds.push(Command::SetAccelerateGrowth(on));
+        }
+    }
+    if iterative {
+        ui.weak(format!(
+            "Growth solves to |r|/|f| ≤ {:.0e} (K_I, K_II within 1e-6 of the direct solver on the default scene), warm-started from the last state.",
+            crate::runner::GROWTH_TOLERANCE
+        ));
     }
 }
 
-fn status_ui(ui: &mut Ui, app: &WorkbenchApp) {
-    let view = &app.runner.view;
-    if app.runner.stale && !view.solved {
+fn status_ui(ui: &mut Ui, v: &AppView) {
+    let view = &v.solution;
+    if v.run.stale && !view.solved {
         ui.colored_label(ui.visuals().warn_fg_color, "Scene changed — press Solve.");
     }
-    match app.runner.mode {
+    match v.run.mode {
         RunMode::Paused => {}
         RunMode::Relaxing => {
             ui.horizontal(|ui| {
@@ -188,7 +247,7 @@ fn status_ui(ui: &mut Ui, app: &WorkbenchApp) {
             });
             if let Some(r) = view.relax {
                 // progress on a log scale from residual 1 to the tolerance
-                let goal = app.scene.solver.tolerance.max(1e-300).log10();
+                let goal = v.scene.solver.tolerance.max(1e-300).log10();
                 let done = (r.residual.max(1e-300).log10() / goal).clamp(0.0, 1.0) as f32;
                 ui.add(ProgressBar::new(done).text(format!(
                     "sweep {}, residual {:.2e}",
@@ -196,33 +255,28 @@ fn status_ui(ui: &mut Ui, app: &WorkbenchApp) {
                 )));
             }
         }
-        RunMode::Growing => {
+        RunMode::Growing | RunMode::GrowingOne => {
             ui.horizontal(|ui| {
                 ui.spinner();
-                ui.label("Growing…");
+                ui.label(format!("Growing ({})…", solver_name(v.run.growth_solver)));
             });
             ui.add(
                 ProgressBar::new(view.load_factor as f32)
                     .text(format!("load factor λ = {:.3}", view.load_factor)),
             );
+            ui.label(growth_progress(view));
         }
     }
-    if let Some(p) = app.runner.field.progress() {
+    unconverged_ui(ui, view);
+    if let Some(p) = v.run.field_progress {
         ui.add(ProgressBar::new(p).text("sampling the field"));
     }
-    if let Some((kind, seconds)) = app
-        .comparison
-        .as_ref()
-        .and_then(crate::compare::Comparison::status)
-    {
-        ui.horizontal(|ui| {
-            ui.spinner();
-            ui.label(format!(
-                "Comparing: {} ({})",
-                solver_name(kind),
-                units::seconds(seconds)
-            ));
-        });
+    if let Some((run, progress)) = v.race.and_then(crate::compare::Race::status) {
+        ui.add(ProgressBar::new(progress).text(format!(
+            "Race: {} ({})",
+            run.racer.name,
+            units::seconds(run.seconds())
+        )));
     }
     Grid::new("status").num_columns(2).show(ui, |ui| {
         ui.label("Solved");
@@ -230,19 +284,28 @@ fn status_ui(ui: &mut Ui, app: &WorkbenchApp) {
         ui.end_row();
         if let Some(r) = view.relax {
             ui.label("Relaxation");
-            ui.label(format!(
+            let text = format!(
                 "{} sweeps, residual {:.2e}{}",
                 r.iterations,
                 r.residual,
-                if r.converged { ", converged" } else { "" }
-            ));
+                match (r.finished, r.converged) {
+                    (_, true) => ", converged",
+                    (true, false) => ", NOT converged",
+                    (false, false) => "",
+                }
+            );
+            if r.finished && !r.converged {
+                ui.colored_label(ui.visuals().warn_fg_color, text);
+            } else {
+                ui.label(text);
+            }
             ui.end_row();
         }
-        if let Some(s) = app.runner.last_solve_seconds {
+        if let Some(s) = v.run.last_solve_seconds {
             ui.label("Last build + solve");
             ui.label(format!(
                 "{} + {}",
-                units::seconds(app.runner.last_build_seconds),
+                units::seconds(v.run.last_build_seconds),
                 units::seconds(s)
             ));
             ui.end_row();
@@ -255,7 +318,12 @@ fn status_ui(ui: &mut Ui, app: &WorkbenchApp) {
         ui.end_row();
         if let Some(o) = view.outcome {
             ui.label("Outcome");
-            ui.label(format!("{o:?}").to_lowercase());
+            let text = format!("{o:?}").to_lowercase();
+            if o == cdca::report::Outcome::NotConverged {
+                ui.colored_label(ui.visuals().warn_fg_color, text);
+            } else {
+                ui.label(text);
+            }
             ui.end_row();
         }
         if !view.contact.is_empty() {
@@ -270,4 +338,42 @@ fn status_ui(ui: &mut Ui, app: &WorkbenchApp) {
             ui.end_row();
         }
     });
+}
+
+/// The growth run's progress line: step, λ, sweeps and residual of the
+/// step's solve.
+fn growth_progress(view: &crate::solution::SolutionView) -> String {
+    let step = view.history.len() + 1;
+    match view.last_residual {
+        Some(r) => format!(
+            "step {step}, λ = {:.3}, {} sweeps, residual {:.2e}",
+            view.load_factor, r.iteration, r.residual
+        ),
+        None => format!("step {step}, λ = {:.3}", view.load_factor),
+    }
+}
+
+/// Results that did not converge, in the warning colour with the
+/// iteration count and residual: a relaxation that ended at a cap, a growth
+/// step whose solve did not converge.
+fn unconverged_ui(ui: &mut Ui, view: &crate::solution::SolutionView) {
+    let warn = ui.visuals().warn_fg_color;
+    if let Some(r) = view.relax.filter(|r| r.finished && !r.converged) {
+        ui.colored_label(
+            warn,
+            format!(
+                "Not converged: the solve stopped at a cap after {} sweeps, residual {:.2e}. The field shown is not a solution (raise Max iterations or Max contact iterations).",
+                r.iterations, r.residual
+            ),
+        );
+    }
+    if let Some(s) = view.history.iter().rev().find(|s| !s.converged) {
+        ui.colored_label(
+            warn,
+            format!(
+                "Growth step {} did not converge ({} iterations, {} contact iterations, contact change {:.2e}); growth stopped there.",
+                s.step, s.solver_iterations, s.contact.iterations, s.contact.residual
+            ),
+        );
+    }
 }

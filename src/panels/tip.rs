@@ -2,23 +2,23 @@
 //! plot of σ_θθ(θ, r0) and |τ_rθ(θ, r0)| with their thresholds and the
 //! chosen angle.
 
-use cdca::CriterionCurve;
 use cdca::report::{Mode, TipReport};
 use cdca::scene::CriterionKind;
+use cdca::{CriterionCurve, Scene};
 use egui::{Color32, Grid, Ui};
 use egui_plot::{Legend, Line, LineStyle, Plot, PlotPoints};
 
-use crate::app::WorkbenchApp;
 use crate::command::Command;
 use crate::units;
+use crate::view::AppView;
 
 const SIGMA_COLOR: Color32 = Color32::from_rgb(70, 140, 255);
 const TAU_COLOR: Color32 = Color32::from_rgb(255, 150, 40);
 const ANGLE_COLOR: Color32 = Color32::from_rgb(40, 200, 90);
 
-pub fn tip_ui(ui: &mut Ui, app: &WorkbenchApp, cmds: &mut Vec<Command>) {
+pub fn tip_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
     ui.heading("Tip inspector");
-    let tips = &app.runner.view.tips;
+    let tips = &v.solution.tips;
     if tips.is_empty() {
         ui.weak("Solve, then click a tip on the canvas.");
         return;
@@ -27,7 +27,7 @@ pub fn tip_ui(ui: &mut Ui, app: &WorkbenchApp, cmds: &mut Vec<Command>) {
         let t = &tips[i];
         format!("Crack {}, end {}", t.crack + 1, t.tip + 1)
     };
-    let mut selected = app.selected_tip;
+    let mut selected = v.selected_tip;
     egui::ComboBox::from_label("Tip")
         .selected_text(
             selected
@@ -40,20 +40,15 @@ pub fn tip_ui(ui: &mut Ui, app: &WorkbenchApp, cmds: &mut Vec<Command>) {
                 ui.selectable_value(&mut selected, Some(i), name(i));
             }
         });
-    if selected != app.selected_tip {
+    if selected != v.selected_tip {
         cmds.push(Command::SelectTip(selected));
     }
-    let Some(tip) = app.selected_tip.and_then(|i| tips.get(i)) else {
+    let Some(tip) = v.selected_tip.and_then(|i| tips.get(i)) else {
         return;
     };
     values_ui(ui, tip);
-    let curve = app
-        .tip_curve
-        .as_ref()
-        .filter(|c| Some(c.tip) == app.selected_tip)
-        .and_then(|c| c.curve.as_ref());
-    match curve {
-        Some(c) => polar_plot_ui(ui, app, tip, c),
+    match v.tip_curve {
+        Some(c) => polar_plot_ui(ui, v.scene, tip, c),
         None => {
             ui.weak("No σ_θθ / τ_rθ curve for this tip.");
         }
@@ -113,15 +108,14 @@ fn circle(radius: f64) -> PlotPoints<'static> {
         .collect()
 }
 
-fn polar_plot_ui(ui: &mut Ui, app: &WorkbenchApp, tip: &TipReport, c: &CriterionCurve) {
-    let comprehensive = app.scene.criterion.kind == CriterionKind::Comprehensive;
-    let m = &app.scene.material;
-    let tan_phi = m.friction_angle_deg.to_radians().tan();
+fn polar_plot_ui(ui: &mut Ui, scene: &Scene, tip: &TipReport, c: &CriterionCurve) {
+    let comprehensive = scene.criterion.kind == CriterionKind::Comprehensive;
+    let (friction, cohesion) = c.shear_envelope;
     let tau_abs: Vec<f64> = c.tau_rt.iter().map(|t| t.abs()).collect();
     let tau_limit: Vec<f64> = c
         .sigma_tt
         .iter()
-        .map(|s| (-s).max(0.0) * tan_phi + m.cohesion)
+        .map(|s| (-s).max(0.0) * friction + cohesion)
         .collect();
     let base = c
         .sigma_tt
@@ -144,9 +138,16 @@ fn polar_plot_ui(ui: &mut Ui, app: &WorkbenchApp, tip: &TipReport, c: &Criterion
         units::mm(c.r0),
         units::mpa(base)
     ));
+    // square, as wide as the panel, with the outermost curve inside
+    let reach = outer * 1e-6 * 1.05;
     Plot::new("polar")
         .data_aspect(1.0)
-        .height(260.0)
+        .view_aspect(1.0)
+        .width(ui.available_width().min(320.0))
+        .include_x(-reach)
+        .include_x(reach)
+        .include_y(-reach)
+        .include_y(reach)
         .show_axes(false)
         .show_grid(false)
         .legend(Legend::default())

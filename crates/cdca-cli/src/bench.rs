@@ -17,15 +17,12 @@ mod svg;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use cdca::contact::{FaceState, contact_system, gaps, update_point};
-use cdca::contact_loop::{ContactParams, solve_with_contact};
-use cdca::geometry::P2;
-use cdca::model::Model;
-use cdca::relaxation::Relaxation;
+use cdca::contact::iteration::ContactParams;
+use cdca::discretisation::assembly::ElementBlock;
+use cdca::discretisation::xfem::Xfem;
+use cdca::race::{RaceSystem, Reference, Sample};
 use cdca::scene::{Ordering, Scene, SolverKind, SolverSpec};
-use cdca::solver::DirectSolver;
-use cdca::tips::all_tip_sifs;
-use cdca::xfem::Xfem;
+use cdca::solvers::relaxation::Relaxation;
 use scenes::SCENES;
 
 use crate::error::CliError;
@@ -45,16 +42,6 @@ pub struct Args {
     /// (at least 2 s).
     #[arg(long, default_value_t = 30.0)]
     budget: f64,
-}
-
-/// One checkpoint of one run.
-#[derive(Clone, Debug)]
-pub struct Sample {
-    pub iteration: usize,
-    pub seconds: f64,
-    pub energy: f64,
-    pub k1: f64,
-    pub k2: f64,
 }
 
 /// One solver on one scene and size.
@@ -124,22 +111,10 @@ fn bench_case(
     n: usize,
     budget: f64,
 ) -> Result<Vec<Run>, CliError> {
-    let model = Model::new(scene.clone());
-    let x = model.discretise(model.initial_cracks());
-    let f_ext = cdca::loads::traction_forces(&x, &scene.boundary);
-    // settle the contact states with the direct solver
-    let committed = vec![FaceState::default(); x.faces.len()];
-    let mut u = vec![0.0; x.n_free()];
-    let (states, _) = solve_with_contact(
-        &x,
-        &f_ext,
-        &committed,
-        &mut u,
-        &mut DirectSolver::default(),
-        ContactParams::default(),
-    )?;
-    let mut f = f_ext.clone();
-    let blocks = contact_system(&x, &states, &committed, &mut f);
+    // contact states settled by the direct solver; the system to race on a
+    // fresh discretisation, so that the timed direct solve pays for its
+    // symbolic factorisation too
+    let RaceSystem { x, blocks, f } = RaceSystem::settle(scene, ContactParams::default())?;
     let zero = vec![0.0; x.n_free()];
     let spec = |kind, ordering, omega| SolverSpec {
         kind,
@@ -195,7 +170,7 @@ fn bench_case(
 /// The linear system of one scene and size, with its reference.
 struct Case<'a> {
     x: &'a Xfem,
-    blocks: &'a [cdca::assembly::ElementBlock],
+    blocks: &'a [ElementBlock],
     f: &'a [f64],
     reference: &'a Reference,
     /// Time budget, s.
@@ -235,74 +210,6 @@ impl Case<'_> {
 /// Short label of a solver setting for progress messages.
 fn label(spec: &SolverSpec) -> String {
     format!("{:?} ω={:.3}", spec.kind, spec.omega)
-}
-
-/// The direct solution and its SIFs.
-struct Reference {
-    u: Vec<f64>,
-    energy: f64,
-    k: Vec<(f64, f64)>,
-    scale: f64,
-}
-
-impl Reference {
-    fn new(x: &Xfem, op: &cdca::element_op::ElementOperator, u: &[f64]) -> Self {
-        let mut kv = vec![0.0; u.len()];
-        let k = sifs(x, u);
-        let scale = k
-            .iter()
-            .fold(0.0_f64, |m, (a, b)| m.max(a.abs()).max(b.abs()));
-        Self {
-            u: u.to_vec(),
-            energy: op.energy(u, &mut kv).sqrt(),
-            k,
-            scale,
-        }
-    }
-
-    /// Errors of `u` against the reference.
-    fn sample(
-        &self,
-        x: &Xfem,
-        op: &cdca::element_op::ElementOperator,
-        u: &[f64],
-        iteration: usize,
-        seconds: f64,
-    ) -> Sample {
-        let e: Vec<f64> = u.iter().zip(&self.u).map(|(a, b)| a - b).collect();
-        let mut kv = vec![0.0; u.len()];
-        let energy = op.energy(&e, &mut kv).max(0.0).sqrt() / self.energy;
-        let k = sifs(x, u);
-        let err = |pick: fn(&(f64, f64)) -> f64| {
-            k.iter().zip(&self.k).fold(0.0_f64, |m, (a, b)| {
-                m.max((pick(a) - pick(b)).abs() / self.scale)
-            })
-        };
-        Sample {
-            iteration,
-            seconds,
-            energy,
-            k1: err(|p| p.0),
-            k2: err(|p| p.1),
-        }
-    }
-}
-
-/// (K_I, K_II) of every free tip, with the contact tractions of the
-/// states that `u` itself implies.
-fn sifs(x: &Xfem, u: &[f64]) -> Vec<(f64, f64)> {
-    let tractions: Vec<P2> = x
-        .faces
-        .iter()
-        .map(|fp| {
-            let (gn, gt) = gaps(x, fp, u);
-            update_point(&x.funcs.cracks[fp.crack], 0.0, gn, gt).traction(fp)
-        })
-        .collect();
-    all_tip_sifs(x, u, &tractions)
-        .into_iter()
-        .map(|(_, _, _, s)| (s.k1, s.k2))
-        .collect()
 }
 
 /// First time at which the energy error is at most `tol`.

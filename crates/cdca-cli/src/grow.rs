@@ -38,7 +38,16 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     if let Some(dir) = &args.csv {
         write_csv(dir, &report)?;
     }
-    output::print_json(&report)
+    output::print_json(&report)?;
+    // the report is printed either way; growth stopped on an unconverged
+    // solve exits 1
+    match report.steps.iter().find(|s| !s.converged) {
+        Some(s) => Err(CliError::Failure(format!(
+            "step {} did not converge (solver {} iterations, contact {} iterations, relative change {:.3e}): growth stopped",
+            s.step, s.solver_iterations, s.contact.iterations, s.contact.residual
+        ))),
+        None => Ok(()),
+    }
 }
 
 fn write_csv(dir: &Path, report: &GrowReport) -> Result<(), CliError> {

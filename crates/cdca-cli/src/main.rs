@@ -11,6 +11,7 @@ mod grow;
 mod output;
 mod scene_file;
 mod solve;
+mod sweep;
 mod validate;
 
 use std::process::ExitCode;
@@ -36,6 +37,9 @@ enum Command {
     Solve(solve::Args),
     /// Grow the cracks of a scene (SPEC §9) and print the history as JSON.
     Grow(grow::Args),
+    /// The first critical-growth step (angle, mode, λ_cr, K_I, K_II) for
+    /// each value of one scene parameter; a table, and CSV with `--csv`.
+    Sweep(sweep::Args),
     /// Error against run time of every solver (CSV, SVG and a table).
     Bench(bench::Args),
 }
@@ -50,6 +54,7 @@ fn main() -> ExitCode {
         Command::Validate(args) => validate::run(&args),
         Command::Solve(args) => solve::run(&args),
         Command::Grow(args) => grow::run(&args),
+        Command::Sweep(args) => sweep::run(&args),
         Command::Bench(args) => bench::run(&args),
     };
     match result {

@@ -20,5 +20,10 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let mut sim = Simulation::new(scene)?;
     sim.set_load_factor(1.0);
     let report = sim.solve()?;
-    output::print_json(&report)
+    output::print_json(&report)?;
+    // the report is printed either way; an unconverged solve exits 1
+    match report.failure() {
+        Some(why) => Err(CliError::Failure(why)),
+        None => Ok(()),
+    }
 }

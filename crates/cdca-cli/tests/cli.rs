@@ -345,7 +345,7 @@ fn solve_prints_the_report_of_spec_11() {
 fn grow_prints_the_history_and_writes_matching_csv() {
     let dir = temp_dir("grow");
     let csv = dir.join("out");
-    let path = scenes_dir().join("closed_crack_biaxial.json");
+    let path = scenes_dir().join("specimen_single_flaw.json");
     let run = cdca(&["grow", path_str(&path), "--csv", path_str(&csv)]);
     assert_eq!(run.code, Some(0), "{}", run.stderr);
     let report: serde_json::Value = serde_json::from_str(&run.stdout).expect("stdout is JSON");
@@ -367,4 +367,182 @@ fn grow_prints_the_history_and_writes_matching_csv() {
     let paths = std::fs::read_to_string(csv.join("cracks.csv")).expect("cracks.csv");
     assert!(paths.starts_with("crack,point,x,y\n"));
     assert_eq!(paths.lines().count(), 1 + vertices);
+}
+
+/// The frictional scene of the exit-code tests: a closed 45° crack with
+/// face friction 0.5 under 10 MPa compression and a 2 MPa confinement.
+fn frictional_scene(solver: &str) -> String {
+    BASE.replace(
+        r#""boundary": { "top""#,
+        &format!(
+            r#""solver": {solver},
+  "boundary": {{ "left": {{ "kind": "roller" }}, "bottom": {{ "kind": "roller" }},
+                "right": {{ "kind": "traction", "normal": -2e6 }}, "top""#
+        ),
+    )
+}
+
+/// Writes `text` as a scene file and runs `cdca <command>` on it.
+fn run_scene(tag: &str, command: &str, text: &str) -> (Run, serde_json::Value) {
+    let dir = temp_dir(tag);
+    let path = dir.join("scene.json");
+    std::fs::write(&path, text).expect("scene written");
+    let run = cdca(&[command, path_str(&path)]);
+    assert!(!run.stderr.contains("panicked"), "{tag}: {}", run.stderr);
+    let report = serde_json::from_str(&run.stdout)
+        .unwrap_or_else(|e| panic!("{tag}: stdout is not JSON ({e}): {}", run.stdout));
+    (run, report)
+}
+
+/// A capped contact iteration is not a trustworthy answer: `cdca solve`
+/// prints the report with `contact.converged: false` and exits 1 with one
+/// line naming the contact iteration (SPEC §11 "Exit status"). With the
+/// default cap the same scene converges and exits 0.
+#[test]
+fn solve_exits_1_when_the_contact_iteration_is_capped() {
+    let (run, report) = run_scene(
+        "contact-capped",
+        "solve",
+        &frictional_scene(r#"{ "max_contact_iterations": 1 }"#),
+    );
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    assert_eq!(report["contact"]["converged"], false);
+    assert_eq!(report["contact"]["iterations"], 1);
+    assert_eq!(report["solver"]["converged"], true);
+    assert_eq!(run.stderr.trim_end().lines().count(), 1, "{}", run.stderr);
+    assert!(
+        run.stderr
+            .starts_with("cdca: contact iteration did not converge"),
+        "{}",
+        run.stderr
+    );
+
+    let (run, report) = run_scene("contact-free", "solve", &frictional_scene("{}"));
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert_eq!(report["contact"]["converged"], true);
+    assert!(report["contact"]["iterations"].as_u64() > Some(1));
+    assert_eq!(report["contact"]["cycling"], 0);
+}
+
+/// The automaton stopped at `max_iterations` prints its report (the last
+/// iterate, its iteration count and residual) and exits 1.
+#[test]
+fn solve_exits_1_with_the_report_when_the_automaton_is_capped() {
+    let (run, report) = run_scene(
+        "automaton-capped",
+        "solve",
+        &frictional_scene(r#"{ "kind": "automaton", "max_iterations": 25 }"#),
+    );
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    assert_eq!(report["solver"]["kind"], "automaton");
+    assert_eq!(report["solver"]["converged"], false);
+    assert_eq!(report["solver"]["iterations"], 25);
+    let residual = report["solver"]["residual"].as_f64().expect("residual");
+    assert!(
+        residual.is_finite() && residual > 1e-10,
+        "residual {residual}"
+    );
+    assert!(
+        run.stderr
+            .contains("automaton solver did not converge: 25 iterations"),
+        "{}",
+        run.stderr
+    );
+}
+
+/// Growth does not go on from an unconverged solve: the step is recorded
+/// with `converged: false`, the outcome is `not_converged`, no tip grew,
+/// and the exit code is 1 with the report printed.
+#[test]
+fn grow_stops_with_not_converged_and_exits_1() {
+    let (run, report) = run_scene(
+        "grow-capped",
+        "grow",
+        &frictional_scene(r#"{ "kind": "cg", "max_iterations": 3 }"#),
+    );
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    assert_eq!(report["outcome"], "not_converged");
+    let steps = report["steps"].as_array().expect("steps");
+    assert_eq!(steps.len(), 1, "growth went on after an unconverged step");
+    assert_eq!(steps[0]["converged"], false);
+    assert_eq!(steps[0]["grown"].as_array().map(Vec::len), Some(0));
+    assert!(
+        run.stderr.contains("step 1 did not converge"),
+        "{}",
+        run.stderr
+    );
+}
+
+/// Every step of a converged growth run says so, contact included.
+#[test]
+fn grow_records_the_status_of_every_step() {
+    let path = scenes_dir().join("specimen_single_flaw.json");
+    let run = cdca(&["grow", path_str(&path)]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    let report: serde_json::Value = serde_json::from_str(&run.stdout).expect("stdout is JSON");
+    let steps = report["steps"].as_array().expect("steps");
+    assert!(!steps.is_empty());
+    for s in steps {
+        assert_eq!(s["converged"], true, "step {}", s["step"]);
+        assert_eq!(s["contact"]["converged"], true, "step {}", s["step"]);
+        assert!(s["contact"]["iterations"].as_u64() >= Some(1));
+    }
+}
+
+/// `cdca sweep`: face friction 0.32 and 0.83 on the paper's plate (45°
+/// closed crack, P_H/P_V = 0.2, coarsened to 40 × 40) prints one table row
+/// and writes one CSV row per value; the low-friction crack initiates in
+/// tension at a large angle (> 45°), the high-friction one at a smaller
+/// angle or not at all (the paper's trend); a bad path is rejected (exit 2)
+/// before any work.
+#[test]
+fn sweep_prints_a_table_and_writes_csv() {
+    let dir = temp_dir("sweep");
+    let text = std::fs::read_to_string(scenes_dir().join("plate_45_biaxial_k0.2_mu0.5.json"))
+        .expect("scene")
+        .replace("\"nx\": 120", "\"nx\": 40")
+        .replace("\"ny\": 120", "\"ny\": 40");
+    let scene = dir.join("plate.json");
+    std::fs::write(&scene, text).expect("write");
+    let csv = dir.join("sweep.csv");
+    let run = cdca(&[
+        "sweep",
+        path_str(&scene),
+        "--param",
+        "cracks.0.friction",
+        "--values",
+        "0.32,0.83",
+        "--csv",
+        path_str(&csv),
+    ]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert_eq!(run.stdout.lines().count(), 3, "{}", run.stdout);
+    let csv = std::fs::read_to_string(&csv).expect("csv");
+    let rows: Vec<Vec<&str>> = csv.lines().map(|l| l.split(',').collect()).collect();
+    assert_eq!(
+        rows[0],
+        [
+            "cracks.0.friction",
+            "angle_deg",
+            "mode",
+            "lambda_cr",
+            "k1",
+            "k2",
+            "converged"
+        ]
+    );
+    assert_eq!(rows.len(), 3);
+    let angle = |r: &[&str]| r[1].parse::<f64>().expect("angle").abs();
+    assert_eq!(rows[1][2], "tension");
+    assert!(angle(&rows[1]) > 45.0, "{csv}");
+    assert!(angle(&rows[2]) < angle(&rows[1]), "{csv}");
+    let bad = cdca(&[
+        "sweep",
+        path_str(&scene),
+        "--param",
+        "cracks.3.friction",
+        "--values",
+        "0.5",
+    ]);
+    assert_rejected(&bad, 2, "cracks.3.friction", "sweep with a bad path");
 }

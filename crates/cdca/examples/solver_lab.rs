@@ -1,9 +1,9 @@
 //! Experiments with the iterative solvers: `solver_lab N SCENE KIND TOL`.
 //! SCENE: plain | open | closed. Prints iterations and time.
 #![allow(clippy::unwrap_used)]
-use cdca::model::Model;
-use cdca::relaxation::Relaxation;
+use cdca::discretisation::model::Model;
 use cdca::scene::{Scene, SolverKind, SolverSpec};
+use cdca::solvers::relaxation::Relaxation;
 
 fn main() {
     let a: Vec<String> = std::env::args().collect();
@@ -31,7 +31,7 @@ fn main() {
     let t0 = std::time::Instant::now();
     let model = Model::new(scene.clone());
     let x = model.discretise(model.initial_cracks());
-    let f = cdca::loads::traction_forces(&x, &scene.boundary);
+    let f = cdca::discretisation::loads::traction_forces(&x, &scene.boundary);
     let t1 = t0.elapsed().as_secs_f64();
     let spec = SolverSpec {
         kind,

@@ -8,6 +8,9 @@ pub enum SceneError {
     /// The JSON does not parse or has a wrong type or an unknown field.
     #[error("scene does not parse: {0}")]
     Parse(String),
+    /// The scene could not be written as JSON.
+    #[error("scene cannot be written as JSON: {0}")]
+    Write(String),
     /// A field has a value outside its valid range.
     #[error("scene field `{field}` = {value}: {reason}")]
     Invalid {
@@ -45,11 +48,4 @@ pub enum SolveError {
     /// A non-finite number appeared; `place` says where.
     #[error("non-finite value in {place}")]
     NonFinite { place: String },
-    /// An iterative solver stopped before reaching its tolerance.
-    #[error("{solver} did not converge: {iterations} iterations, relative residual {residual:.3e}")]
-    NoConvergence {
-        solver: String,
-        iterations: usize,
-        residual: f64,
-    },
 }

@@ -1,51 +1,41 @@
 //! `cdca`: the continuous–discontinuous cellular automaton method (CDCA) for
-//! crack initiation and growth in brittle rock under compression–shear.
+//! crack initiation and growth in brittle rock under compression–shear
+//! (Yan, Feng, Pan & Li, 2016).
 //!
 //! Headless: no UI and no file system. Scenes come in as `&str` (JSON) and
 //! reports go out as serialisable structs.
 //!
-//! The pipeline of one solve reads like the method: [`model::Model`] (mesh,
-//! material, supports) → [`xfem::Xfem`] (enrichment, quadrature, face
-//! points) → assembly and a solver ([`direct`]) with frictional contact →
-//! [`sif`] → criterion → growth.
+//! The modules, bottom to top; each uses only those above it in this list:
+//!
+//! | module | the method's part |
+//! | --- | --- |
+//! | [`error`] | typed errors carrying the offending values |
+//! | [`scene`] | the scene file and its validation (SPEC §10) |
+//! | [`report`] | the report contracts (SPEC §11) |
+//! | [`geometry`] | plane geometry, the Q4 mesh, cracks and level sets (§1–2) |
+//! | [`discretisation`] | material, supports, loads, enrichment, quadrature, the XFEM discretisation (§3–4) |
+//! | [`solvers`] | direct, automaton, CG and multigrid solvers of one operator (§6) |
+//! | [`contact`] | the frictional contact law and iteration on closed faces (§5) |
+//! | [`fracture`] | SIFs, criteria, tip evaluation, growth geometry (§7–9) |
+//! | [`Simulation`] | the facade: the paper's steps on one scene (§9) |
+//! | [`race`] | error against run time of any solver, for benchmarks |
 
-pub mod assembly;
-pub mod automaton;
-pub mod boundary;
-pub mod cells;
 pub mod contact;
-pub mod contact_loop;
-pub mod cracks;
-pub mod criterion;
-pub mod direct;
-pub mod dofs;
-pub mod element_op;
-pub mod enrichment;
+pub mod discretisation;
 pub mod error;
-pub mod field;
+pub mod fracture;
 pub mod geometry;
-pub mod growth;
-pub mod loads;
-pub mod material;
-pub mod mesh;
-pub mod model;
-pub mod multigrid;
-pub mod pcg;
-pub mod quadrature;
-pub mod relaxation;
+pub mod race;
 pub mod report;
 pub mod scene;
-pub mod sif;
 mod simulation;
-pub mod solver;
 pub mod solvers;
-pub mod subdivision;
-pub mod tips;
-mod validate;
-pub mod xfem;
 
+pub use contact::ContactState;
 pub use error::{SceneError, SolveError};
 pub use scene::Scene;
 pub use simulation::{
-    ContactPointView, ContactState, CriterionCurve, RelaxStatus, ResidualSample, Simulation,
+    ContactPointView, CriterionCurve, IN_SWEEP_CONTACT_RESIDUAL, Initiation, LAMBDA_TOLERANCE,
+    MAX_TRIALS, Simulation, initiation,
 };
+pub use solvers::{RelaxStatus, ResidualSample};

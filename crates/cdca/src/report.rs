@@ -37,6 +37,8 @@ pub struct SolverReport {
 pub struct ContactReport {
     /// Contact iterations (solves) done.
     pub iterations: usize,
+    /// True only when the states settled with every point obeying the
+    /// contact law and the last linear solve converged.
     pub converged: bool,
     /// Number of face points in each state.
     pub open: usize,
@@ -48,6 +50,10 @@ pub struct ContactReport {
     /// Points that flipped between states too often and were frozen.
     #[serde(default)]
     pub cycling: usize,
+    /// Frozen points whose state breaks the stick/slip rule at the final
+    /// displacement (the contact iteration is then not converged).
+    #[serde(default)]
+    pub violating: usize,
     /// Relative change of the displacement in the last contact iteration.
     #[serde(default)]
     pub residual: f64,
@@ -113,6 +119,9 @@ pub enum Outcome {
     Unstable,
     Through,
     MaxSteps,
+    /// A step's solve (linear or contact) did not converge: growth stopped
+    /// rather than go on from an untrusted state.
+    NotConverged,
 }
 
 /// One solve-evaluate-grow step of SPEC §9.
@@ -122,6 +131,9 @@ pub struct GrowthStepReport {
     pub load_factor: f64,
     pub grown: Vec<GrownTip>,
     pub contact: ContactCounts,
+    /// The step's solve passed every convergence test (linear solve and
+    /// contact iteration).
+    pub converged: bool,
     pub solver_iterations: usize,
     pub seconds: f64,
     /// Every free tip's SIFs and decision at this step.
@@ -142,10 +154,53 @@ pub struct GrownTip {
     pub k2: f64,
 }
 
-/// Counts of face points per contact state.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+/// Counts of face points per contact state, and how the contact iteration
+/// that produced them ended.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct ContactCounts {
     pub open: usize,
     pub stick: usize,
     pub slip: usize,
+    /// The contact iteration converged (see [`ContactReport::converged`]).
+    #[serde(default)]
+    pub converged: bool,
+    /// Contact iterations done.
+    #[serde(default)]
+    pub iterations: usize,
+    /// Relative displacement change of the last contact iteration.
+    #[serde(default)]
+    pub residual: f64,
+    /// Points frozen for cycling, and those of them breaking the law.
+    #[serde(default)]
+    pub cycling: usize,
+    #[serde(default)]
+    pub violating: usize,
+}
+
+impl SolveReport {
+    /// Whether the solve can be trusted: the linear solver and the contact
+    /// iteration both converged.
+    pub fn converged(&self) -> bool {
+        self.solver.converged && self.contact.converged
+    }
+
+    /// One line saying which convergence test failed, if any.
+    pub fn failure(&self) -> Option<String> {
+        if !self.solver.converged {
+            Some(format!(
+                "{} solver did not converge: {} iterations, relative residual {:.3e}",
+                self.solver.kind, self.solver.iterations, self.solver.residual
+            ))
+        } else if !self.contact.converged {
+            Some(format!(
+                "contact iteration did not converge: {} iterations, relative change {:.3e}, {} points cycling ({} breaking the contact law)",
+                self.contact.iterations,
+                self.contact.residual,
+                self.contact.cycling,
+                self.contact.violating
+            ))
+        } else {
+            None
+        }
+    }
 }

@@ -136,7 +136,8 @@ fn face_cohesion_lowers_k2() {
 fn slip_profile_is_elliptical() {
     let p = 10e6;
     let mut sim = Simulation::new(biaxial(0.0, 0.0, 0.0, None, p)).expect("valid");
-    sim.solve().expect("solve");
+    let r = sim.solve().expect("solve");
+    assert!(r.converged() && r.contact.cycling == 0, "{:?}", r.contact);
     let (tau, _) = resolved(0.0, p);
     let mut checked = 0;
     for cp in sim.contact_points() {
@@ -167,25 +168,26 @@ fn open_crack_costs_nothing_and_matches_no_contact() {
     s.cracks.push(c);
     let mut sim = Simulation::new(s.clone()).expect("valid");
     let r = sim.solve().expect("solve");
+    assert!(r.converged() && r.contact.cycling == 0, "{:?}", r.contact);
     assert_eq!(r.contact.iterations, 1);
     assert_eq!(r.contact.stick + r.contact.slip, 0);
     assert!(r.contact.open > 0);
     // without contact: the plain linear problem
-    let model = cdca::model::Model::new(s.clone());
+    let model = cdca::discretisation::model::Model::new(s.clone());
     let x = model.discretise(model.initial_cracks());
-    let f = cdca::loads::traction_forces(&x, &s.boundary);
-    let u = cdca::direct::Factor::new(&x, &[])
+    let f = cdca::discretisation::loads::traction_forces(&x, &s.boundary);
+    let u = cdca::solvers::direct::Factor::new(&x, &[])
         .expect("factor")
         .solve(&f)
         .expect("solve");
-    let field = cdca::field::Field { xfem: &x, u: &u };
+    let field = cdca::discretisation::field::Field { xfem: &x, u: &u };
     for t in &r.tips {
-        let frame = cdca::cracks::TipFrame::of(&x.funcs.cracks[t.crack], t.tip);
-        let plain = cdca::sif::tip_sifs(
+        let frame = cdca::geometry::cracks::TipFrame::of(&x.funcs.cracks[t.crack], t.tip);
+        let plain = cdca::fracture::sif::tip_sifs(
             &field,
             t.crack,
             &frame,
-            cdca::tips::DOMAIN_RADIUS * x.mesh.h(),
+            cdca::fracture::tips::DOMAIN_RADIUS * x.mesh.h(),
             &[],
         );
         assert!(
@@ -219,10 +221,13 @@ fn finite(r: &SolveReport) -> bool {
 }
 
 /// Stiff and extreme cases: penalty k_N h/E from 1 to 1e6, μ from 0 to 10,
-/// loads from 1 Pa to 1 GPa. Every run ends with an explicit status and
-/// finite numbers; the K_II error is printed (a table for the notes) and,
-/// for stiff enough penalties (k_N h/E ≥ 100) and a sliding crack, stays
-/// within 3%.
+/// loads from 1 Pa to 1 GPa. Every run converges (linear solve and contact
+/// iteration, no cycling point) with finite numbers. Reference
+/// `K_II = (τ − μσ_n)√(πa)` for a sliding crack: within 0.5% for
+/// k_N h/E ≥ 100; a sticking crack (μ = 10) keeps `|K_II|` below 3% of
+/// `τ√(πa)` (the elastic pre-slip of the penalty joint) for k_N h/E ≥ 100.
+/// k_N h/E = 1 is a compliant joint, physically another problem: only the
+/// status is asserted there.
 #[test]
 fn stiff_and_extreme_cases_end_cleanly() {
     println!("k_N h/E      μ       P [Pa]   status     it  cyc   K_II error");
@@ -232,7 +237,8 @@ fn stiff_and_extreme_cases_end_cleanly() {
                 let mut sim =
                     Simulation::new(biaxial(0.2, mu, 0.0, Some(alpha), p)).expect("valid");
                 let r = sim.solve().expect("an explicit status, not an error");
-                assert!(finite(&r), "α {alpha} μ {mu} p {p}: {r:?}");
+                let case = format!("α {alpha:e} μ {mu} p {p:e}");
+                assert!(finite(&r), "{case}: {r:?}");
                 let exact = k2_exact(0.2, mu, 0.0, p);
                 let (tau, _) = resolved(0.2, p);
                 let k2 = r.tips[0].k2.abs();
@@ -243,7 +249,7 @@ fn stiff_and_extreme_cases_end_cleanly() {
                 };
                 println!(
                     "{alpha:8.0e} {mu:6.2} {p:12.0e}   {:9} {:3} {:4}   {err:.4}",
-                    if r.contact.converged {
+                    if r.converged() {
                         "converged"
                     } else {
                         "NOT conv."
@@ -251,8 +257,11 @@ fn stiff_and_extreme_cases_end_cleanly() {
                     r.contact.iterations,
                     r.contact.cycling
                 );
-                if alpha >= 1e2 && r.contact.converged {
-                    assert!(err < 0.03, "α {alpha} μ {mu} p {p}: error {err}");
+                assert!(r.converged(), "{case}: {:?}", r.failure());
+                assert_eq!(r.contact.cycling, 0, "{case}: cycling points");
+                if alpha >= 1e2 {
+                    let bound = if exact > 0.0 { 0.005 } else { 0.03 };
+                    assert!(err < bound, "{case}: K_II error {err:.4} above {bound}");
                 }
             }
         }
@@ -260,7 +269,8 @@ fn stiff_and_extreme_cases_end_cleanly() {
 }
 
 /// A case built on the stick/slip threshold (μ = (1−k)/(1+k), τ = μσ_n)
-/// terminates with an explicit status and reports how many points cycled.
+/// converges with every point obeying the contact law, no face open, and
+/// |K_II| below 5% of τ√(πa) (the crack is just stuck).
 #[test]
 fn threshold_case_terminates() {
     let k = 0.2;
@@ -268,6 +278,9 @@ fn threshold_case_terminates() {
     let mut sim = Simulation::new(biaxial(k, mu, 0.0, None, 10e6)).expect("valid");
     let r = sim.solve().expect("explicit status");
     assert!(r.contact.iterations <= 50);
+    // at the threshold a point may cycle; it must still obey the law
+    assert!(r.converged(), "{:?}", r.failure());
+    assert_eq!(r.contact.violating, 0, "{:?}", r.contact);
     assert!(finite(&r));
     println!(
         "threshold: converged {} iterations {} cycling {} stick {} slip {}",

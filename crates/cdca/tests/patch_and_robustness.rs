@@ -43,64 +43,92 @@ fn patch_test_crack_parallel_to_load() {
     assert!(e < 1e-5, "relative error {e:.3e}");
 }
 
-/// Awkward geometries solve with finite values and, against the reference
-/// K_I of the same crack placed generically, stay within 2%.
+/// K_I and K_II (averaged over the free tips) of a crack in the 1 × 3
+/// plate under 1 MPa tension on a 40 × 120 mesh (h = 0.025).
+fn centre_plate_k(crack: CrackSpec) -> (f64, f64) {
+    let mut s = plate(1.0, 3.0, 40, 120);
+    tension_top_bottom(&mut s, 1e6);
+    s.cracks.push(crack);
+    let r = solve(s);
+    assert!(
+        r.tips
+            .iter()
+            .all(|t| t.k1.is_finite() && t.k2.is_finite() && t.t_stress.is_finite())
+    );
+    let n = r.tips.len() as f64;
+    (
+        r.tips.iter().map(|t| t.k1).sum::<f64>() / n,
+        r.tips.iter().map(|t| t.k2).sum::<f64>() / n,
+    )
+}
+
+/// Awkward positions give the same K as the same crack placed generically
+/// (shifted off the grid by a fraction of an element), within 1% (K_II:
+/// within 1% of K_I; measured at most 0.6%), on a 40 × 120 mesh (h = 0.025):
+/// a crack along element edges with both tips on nodes, a 45° crack through
+/// mesh nodes, a slightly inclined crack whose tip is exactly on a node, and
+/// a 45° crack that cuts every element corner along it by 1e-6 of the
+/// element's area (the Heaviside DOFs of those corners are dropped). The
+/// horizontal ones are also within 2% of Tada (a/b = 0.3, see
+/// `sif_verification`).
 #[test]
-fn awkward_crack_positions_stay_accurate() {
-    // centre crack (a = 0.15, a/b = 0.3) on a 40 × 120 mesh (h = 0.025)
-    let k_of = |crack: CrackSpec| {
-        let mut s = plate(1.0, 3.0, 40, 120);
-        tension_top_bottom(&mut s, 1e6);
-        s.cracks.push(crack);
-        let r = solve(s);
-        assert!(
-            r.tips
-                .iter()
-                .all(|t| t.k1.is_finite() && t.k2.is_finite() && t.t_stress.is_finite())
-        );
-        r.tips.iter().map(|t| t.k1).sum::<f64>() / r.tips.len() as f64
+fn awkward_crack_positions_match_the_generic_position() {
+    let h = 0.025;
+    let seg = |a: [f64; 2], b: [f64; 2]| CrackSpec::segment(a, b);
+    let shift = |a: [f64; 2], b: [f64; 2]| {
+        let d = [0.37 * h, 0.41 * h];
+        seg([a[0] + d[0], a[1] + d[1]], [b[0] + d[0], b[1] + d[1]])
     };
-    let generic = k_of(CrackSpec::segment([0.3513, 1.5117], [0.6513, 1.5117]));
+    // corner cut of area 1e-6 h²: a 45° line a distance 1e-3 h from the nodes
+    let dx = 2f64.sqrt() * 1e-3 * h;
     let cases = [
         (
-            "along an element edge, tips on nodes",
-            CrackSpec::segment([0.35, 1.5], [0.65, 1.5]),
+            "along element edges, tips on nodes",
+            [0.35, 1.5],
+            [0.65, 1.5],
         ),
+        ("45° through mesh nodes", [0.35, 1.35], [0.65, 1.65]),
+        ("tip exactly on a node", [0.3513, 1.5117], [0.65, 1.5]),
         (
-            "through mesh nodes (diagonal)",
-            CrackSpec::segment([0.35, 1.35], [0.65, 1.65]),
-        ),
-        (
-            "tip exactly on a node",
-            CrackSpec::segment([0.3513, 1.5117], [0.65, 1.5117]),
-        ),
-        (
-            "cutting an element corner by 1e-6 of its area",
-            CrackSpec::segment([0.35 + 1e-6, 1.5 - 0.0249], [0.65 + 1e-6, 1.5 - 0.0249]),
+            "45°, cutting every element corner by 1e-6 of its area",
+            [0.35 + dx, 1.35],
+            [0.65 + dx, 1.65],
         ),
     ];
-    for (what, crack) in cases {
-        let diag = what.contains("diagonal");
-        let k = k_of(crack);
-        // the diagonal crack has a different geometry: compare with Tada on
-        // its projected length only for finiteness
-        if diag {
-            assert!(k.is_finite() && k > 0.0, "{what}: K_I {k}");
-        } else {
+    let (tada_k, _) = {
+        let al: f64 = 0.3;
+        (
+            1e6 * (PI * 0.15f64).sqrt()
+                * (1.0 - 0.025 * al * al + 0.06 * al.powi(4))
+                * (1.0 / (PI * al / 2.0).cos()).sqrt(),
+            0.0,
+        )
+    };
+    for (what, a, b) in cases {
+        let (k1, k2) = centre_plate_k(seg(a, b));
+        let (g1, g2) = centre_plate_k(shift(a, b));
+        println!("{what}: K_I {k1:.5e} (generic {g1:.5e}), K_II {k2:.5e} (generic {g2:.5e})");
+        assert!(rel(k1, g1) < 0.01, "{what}: K_I {k1:.5e} vs {g1:.5e}");
+        assert!(
+            (k2 - g2).abs() < 0.01 * g1,
+            "{what}: K_II {k2:.5e} vs {g2:.5e}"
+        );
+        if a[1] == b[1] {
             assert!(
-                rel(k, generic) < 0.02,
-                "{what}: K_I {k:.5e} vs {generic:.5e}"
+                rel(k1, tada_k) < 0.02,
+                "{what}: K_I {k1:.5e} vs Tada {tada_k:.5e}"
             );
         }
     }
 }
 
-/// An edge crack that starts on the boundary: one tip, K_I within 2% of
-/// Tada's 2.8266 σ√(πa) on a coarse 40 × 80 mesh, with very coarse (10 × 20)
-/// still finite.
+/// An edge crack that starts on the boundary, its faces 0.04 h above a row
+/// of nodes: one tip, F = K_I/(σ√(πa)) within 0.5% of Tada's 2.8266 on a
+/// 40 × 80 mesh (measured −0.18%) and within 4% on a very coarse 10 × 20
+/// one, where the crack is 5 elements deep (measured −2.5%).
 #[test]
 fn edge_crack_from_boundary_coarse_meshes() {
-    for (n, tol) in [(40usize, 0.02), (10, 1.0)] {
+    for (n, tol) in [(40usize, 0.005), (10, 0.04)] {
         let mut s = plate(1.0, 2.0, n, 2 * n);
         tension_top_bottom(&mut s, 1e6);
         s.boundary.points = vec![
@@ -118,6 +146,7 @@ fn edge_crack_from_boundary_coarse_meshes() {
         let r = solve(s);
         assert_eq!(r.tips.len(), 1);
         let f = r.tips[0].k1 / (1e6 * (PI * 0.5f64).sqrt());
+        println!("n = {n}: F = {f:.5}");
         assert!(f.is_finite() && rel(f, 2.8266) < tol, "n = {n}: F = {f}");
     }
 }

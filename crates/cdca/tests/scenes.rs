@@ -37,7 +37,8 @@ fn every_bundled_scene_is_valid_and_described() {
     for (file, scene) in &scenes {
         assert!(!scene.name.is_empty(), "{file}: no name");
         assert!(scene.description.len() > 40, "{file}: no description");
-        let again = Scene::from_json(&scene.to_json()).expect("to_json output parses");
+        let again =
+            Scene::from_json(&scene.to_json().expect("writes")).expect("to_json output parses");
         assert_eq!(&again, scene, "{file}: round trip");
     }
 }
@@ -47,9 +48,9 @@ fn the_default_scene_is_small_enough_to_be_interactive() {
     let scenes = scenes();
     let (_, scene) = scenes
         .iter()
-        .find(|(file, _)| file == "closed_crack_biaxial")
-        .expect("closed_crack_biaxial.json is bundled");
-    assert!(scene.mesh.nx * scene.mesh.ny <= 40 * 40);
+        .find(|(file, _)| file == "specimen_single_flaw")
+        .expect("specimen_single_flaw.json is bundled");
+    assert!(scene.mesh.nx * scene.mesh.ny <= 60 * 60);
     assert_eq!(scene.cracks.len(), 1);
 }
 

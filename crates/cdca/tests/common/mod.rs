@@ -79,9 +79,19 @@ pub fn centre_crack(cx: f64, cy: f64, a: f64, deg: f64) -> CrackSpec {
     CrackSpec::segment([cx - a * c, cy - a * s], [cx + a * c, cy + a * s])
 }
 
+/// Solves at full load and asserts the status every result is compared
+/// under: linear solve and contact iteration converged, no point frozen for
+/// cycling.
 pub fn solve(scene: Scene) -> SolveReport {
     let mut sim = Simulation::new(scene).expect("valid scene");
-    sim.solve().expect("solve")
+    let r = sim.solve().expect("solve");
+    assert!(r.converged(), "{:?}", r.failure());
+    assert_eq!(
+        r.contact.cycling, 0,
+        "points frozen for cycling: {:?}",
+        r.contact
+    );
+    r
 }
 
 /// Relative difference.

@@ -1,0 +1,212 @@
+//! Penalty frictional contact on closed crack faces (SPEC §5).
+//!
+//! At a face point, `[[u]] = u⁺ − u⁻`, `g_N = [[u]]·n`, `g_T = [[u]]·t`.
+//! `g_N ≥ 0`: open. Otherwise `p_N = k_N g_N`, trial `p_T* = k_T (g_T − g_T^s)`,
+//! `τ_y = μ|p_N| + c_c`: stick if `|p_T*| ≤ τ_y`, else slip with
+//! `p_T = τ_y sign(p_T*)`. Stick points add `k_T t⊗t`, closed points
+//! `k_N n⊗n`; slip friction enters as a force from the last iterate, so the
+//! operator stays symmetric positive definite for every solver.
+
+use std::collections::BTreeMap;
+
+use nalgebra::{DMatrix, DVector};
+use serde::{Deserialize, Serialize};
+
+use crate::discretisation::assembly::ElementBlock;
+use crate::discretisation::dofs::FIXED;
+use crate::discretisation::xfem::{FacePoint, Xfem};
+use crate::geometry::cracks::Crack;
+use crate::geometry::plane::P2;
+
+/// State of a crack-face contact point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ContactState {
+    Open,
+    Stick,
+    Slip,
+}
+
+/// State of one face point, kept between load steps.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FaceState {
+    pub state: ContactState,
+    /// Slipped (plastic) part of the tangential gap g_T^s, m.
+    pub slip: f64,
+    /// Normal gap g_N, m.
+    pub g_n: f64,
+    /// Tangential gap g_T, m.
+    pub g_t: f64,
+    /// Tractions p_N, p_T, Pa.
+    pub p_n: f64,
+    pub p_t: f64,
+}
+
+impl Default for FaceState {
+    fn default() -> Self {
+        Self {
+            state: ContactState::Open,
+            slip: 0.0,
+            g_n: 0.0,
+            g_t: 0.0,
+            p_n: 0.0,
+            p_t: 0.0,
+        }
+    }
+}
+
+impl FaceState {
+    /// Traction vector `p_N n + p_T t` that the `−` side exerts against
+    /// the `+` side's motion (zero when open).
+    pub fn traction(&self, fp: &FacePoint) -> P2 {
+        fp.n * self.p_n + fp.t * self.p_t
+    }
+}
+
+/// Normal and tangential jump operators of a face point over its element's
+/// DOFs: `g_N = J_n · u_e`, `g_T = J_t · u_e`.
+pub fn jump_operators(fp: &FacePoint) -> (DVector<f64>, DVector<f64>) {
+    let nd = 2 * fp.jump.len();
+    let mut jn = DVector::zeros(nd);
+    let mut jt = DVector::zeros(nd);
+    for (s, &j) in fp.jump.iter().enumerate() {
+        for c in 0..2 {
+            jn[2 * s + c] = j * fp.n[c];
+            jt[2 * s + c] = j * fp.t[c];
+        }
+    }
+    (jn, jt)
+}
+
+/// Gaps `(g_N, g_T)` of a face point from the free-DOF displacement.
+pub fn gaps(x: &Xfem, fp: &FacePoint, u: &[f64]) -> (f64, f64) {
+    let dofs = &x.enriched[fp.slot].dofs;
+    let (mut gn, mut gt) = (0.0, 0.0);
+    for (s, &j) in fp.jump.iter().enumerate() {
+        for c in 0..2 {
+            let d = dofs[2 * s + c];
+            if d != FIXED {
+                let v = j * u[d as usize];
+                gn += v * fp.n[c];
+                gt += v * fp.t[c];
+            }
+        }
+    }
+    (gn, gt)
+}
+
+/// The return mapping: new state of a point from its gaps, given the slip
+/// committed at the last converged step.
+pub fn update_point(crack: &Crack, committed_slip: f64, g_n: f64, g_t: f64) -> FaceState {
+    if g_n >= 0.0 {
+        return FaceState {
+            state: ContactState::Open,
+            slip: g_t,
+            g_n,
+            g_t,
+            p_n: 0.0,
+            p_t: 0.0,
+        };
+    }
+    let p_n = crack.kn * g_n;
+    let trial = crack.kt * (g_t - committed_slip);
+    let tau_y = crack.friction * p_n.abs() + crack.cohesion;
+    if trial.abs() <= tau_y {
+        FaceState {
+            state: ContactState::Stick,
+            slip: committed_slip,
+            g_n,
+            g_t,
+            p_n,
+            p_t: trial,
+        }
+    } else {
+        let p_t = tau_y * trial.signum();
+        FaceState {
+            state: ContactState::Slip,
+            slip: g_t - p_t / crack.kt,
+            g_n,
+            g_t,
+            p_n,
+            p_t,
+        }
+    }
+}
+
+/// Contact stiffness blocks and the force they add to the right-hand side,
+/// for the current states (and the committed slips).
+pub fn contact_system(
+    x: &Xfem,
+    states: &[FaceState],
+    committed: &[FaceState],
+    f: &mut [f64],
+) -> Vec<ElementBlock> {
+    let mut blocks: BTreeMap<usize, DMatrix<f64>> = BTreeMap::new();
+    for (i, fp) in x.faces.iter().enumerate() {
+        let st = &states[i];
+        if st.state == ContactState::Open || fp.follows.is_some() {
+            continue;
+        }
+        let crack = &x.funcs.cracks[fp.crack];
+        let (jn, jt) = jump_operators(fp);
+        let nd = jn.len();
+        let k = blocks
+            .entry(fp.slot)
+            .or_insert_with(|| DMatrix::zeros(nd, nd));
+        k.ger(fp.w * crack.kn, &jn, &jn, 1.0);
+        // force on the right-hand side: stick `+w k_T g_T^s J_t`, slip `−w p_T J_t`
+        let ft = match st.state {
+            ContactState::Stick => {
+                k.ger(fp.w * crack.kt, &jt, &jt, 1.0);
+                fp.w * crack.kt * committed[i].slip
+            }
+            _ => -fp.w * st.p_t,
+        };
+        let dofs = &x.enriched[fp.slot].dofs;
+        for (a, &d) in dofs.iter().enumerate() {
+            if d != FIXED {
+                f[d as usize] += ft * jt[a];
+            }
+        }
+    }
+    blocks
+        .into_iter()
+        .map(|(slot, k)| ElementBlock { slot, k })
+        .collect()
+}
+
+/// Counts of points per state.
+pub fn counts(states: &[FaceState]) -> crate::report::ContactCounts {
+    let mut c = crate::report::ContactCounts::default();
+    for s in states {
+        match s.state {
+            ContactState::Open => c.open += 1,
+            ContactState::Stick => c.stick += 1,
+            ContactState::Slip => c.slip += 1,
+        }
+    }
+    c
+}
+
+/// Carries face states over to a new discretisation: each new point takes
+/// the state of the nearest old point of the same crack (new faces start
+/// open).
+pub fn carry_over(
+    old: &[FacePoint],
+    old_states: &[FaceState],
+    new: &[FacePoint],
+    h: f64,
+) -> Vec<FaceState> {
+    new.iter()
+        .map(|fp| {
+            old.iter()
+                .zip(old_states)
+                .filter(|(o, _)| o.crack == fp.crack)
+                .map(|(o, s)| ((o.x - fp.x).norm(), s))
+                .filter(|(d, _)| *d < 0.5 * h)
+                .min_by(|a, b| a.0.total_cmp(&b.0))
+                .map(|(_, s)| *s)
+                .unwrap_or_default()
+        })
+        .collect()
+}

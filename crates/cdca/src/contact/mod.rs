@@ -1,0 +1,12 @@
+//! Frictional contact on closed crack faces (SPEC §5): the penalty
+//! stick/slip law with Coulomb friction and cohesion per face piece, and
+//! the contact iteration (the paper's Newton loop) around any linear
+//! solver, with a guard against stick–slip cycling and an explicit status.
+//!
+//! Uses the discretisation (face points, element blocks) and the solvers'
+//! common trait.
+
+pub mod iteration;
+pub mod law;
+
+pub use law::{ContactState, FaceState};

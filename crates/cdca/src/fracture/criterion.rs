@@ -1,0 +1,376 @@
+//! Fracture criteria at a free tip (SPEC §8).
+//!
+//! Comprehensive (the paper's): tensile first, `θ0 = argmax σ_θθ(θ, r0)`,
+//! grows in tension if `σ_θθ(θ0) ≥ σ_t`; otherwise shear,
+//! `θ1 = argmax |τ_rθ(θ, r0)|`, grows if `|τ_rθ(θ1)| ≥ max(σ_n, 0) μ_s + c_s`
+//! with `σ_n = −σ_θθ(θ1)` and the envelope of [`ShearStrength`]. MTS (Erdogan–Sih) and its T-stress variant are
+//! offered for comparison.
+
+use std::f64::consts::PI;
+
+use crate::fracture::sif::Sifs;
+use crate::geometry::cracks::TipFrame;
+use crate::geometry::plane::P2;
+use crate::report::{CriterionReport, Mode};
+use crate::scene::{CriterionKind, Material, Scene, ShearStrength};
+
+/// Largest kink angle searched, degrees. Beyond ±90° a crack would grow
+/// backwards, into its own faces; the circle there lies on the flaw.
+pub const MAX_KINK_DEG: f64 = 90.0;
+
+/// Number of samples on the circle (one every half degree, ±MAX_KINK_DEG).
+const SAMPLES: usize = 361;
+
+/// Angle of sample `i`, rad.
+fn sample_angle(i: usize) -> f64 {
+    (-MAX_KINK_DEG + 2.0 * MAX_KINK_DEG * i as f64 / (SAMPLES - 1) as f64).to_radians()
+}
+
+/// σ_θθ and τ_rθ sampled on the circle r0 around a tip.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Circle {
+    /// Angles in the tip frame, rad.
+    pub theta: Vec<f64>,
+    pub sigma_tt: Vec<f64>,
+    pub tau_rt: Vec<f64>,
+}
+
+/// Settings resolved from the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CriterionParams {
+    pub kind: CriterionKind,
+    /// m
+    pub r0: f64,
+    /// Tensile strength σ_t, Pa.
+    pub sigma_t: f64,
+    /// Rock cohesion c, Pa, and friction angle φ, rad.
+    pub cohesion: f64,
+    pub friction_angle: f64,
+    /// K_IC, Pa·√m.
+    pub k_ic: f64,
+    /// K_IIC, Pa·√m.
+    pub k_iic: f64,
+    pub shear: ShearStrength,
+}
+
+/// Friction coefficient μ and cohesion c_c (Pa) of the faces of the crack
+/// whose tip is evaluated.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Faces {
+    pub friction: f64,
+    pub cohesion: f64,
+}
+
+impl CriterionParams {
+    /// The scene's settings, with the defaults resolved by
+    /// [`radius_and_strength`].
+    pub fn of_scene(scene: &Scene) -> Self {
+        let m = &scene.material;
+        let (r0, sigma_t) = radius_and_strength(scene.criterion.r0, m);
+        Self {
+            kind: scene.criterion.kind,
+            r0,
+            sigma_t,
+            cohesion: m.cohesion,
+            friction_angle: m.friction_angle_deg.to_radians(),
+            k_ic: m.k_ic,
+            k_iic: m.k_iic,
+            shear: scene.criterion.shear_strength,
+        }
+    }
+
+    /// Friction coefficient and cohesion (Pa) of the shear branch at a tip
+    /// of a crack with `faces`: see [`ShearStrength`].
+    pub fn shear_envelope(&self, faces: Faces) -> (f64, f64) {
+        match self.shear {
+            ShearStrength::Faces => (
+                faces.friction,
+                faces.cohesion + self.k_iic / (2.0 * PI * self.r0).sqrt(),
+            ),
+            ShearStrength::Rock => (self.friction_angle.tan(), self.cohesion),
+        }
+    }
+}
+
+/// Tensile strength of the Mohr–Coulomb envelope with a tension cut-off at
+/// its apex tangent, `σ_t = 2c cos φ / (1 + sin φ)`, Pa: the uniaxial
+/// tension at which the Mohr circle `(σ_t, 0)` touches `τ = c + σ_n tan φ`.
+pub fn tension_cutoff(cohesion: f64, friction_angle: f64) -> f64 {
+    2.0 * cohesion * friction_angle.cos() / (1.0 + friction_angle.sin())
+}
+
+/// The circle radius r0 (m) and tensile strength σ_t (Pa). Each one left
+/// out follows from the other through `σ_t = K_IC / √(2π r0)`, so that in a
+/// pure mode-I field the tensile check is `K_I ≥ K_IC`; with neither given
+/// σ_t is the Mohr–Coulomb [`tension_cutoff`] of c and φ and
+/// `r0 = (K_IC/σ_t)² / 2π`, the size of the tip's process (plastic) zone
+/// (Irwin's estimate). Both given: used as they are.
+pub fn radius_and_strength(r0: Option<f64>, m: &Material) -> (f64, f64) {
+    let radius = |st: f64| (m.k_ic / st).powi(2) / (2.0 * PI);
+    match (r0, m.tensile_strength) {
+        (Some(r0), Some(st)) => (r0, st),
+        (Some(r0), None) => (r0, m.k_ic / (2.0 * PI * r0).sqrt()),
+        (None, Some(st)) => (radius(st), st),
+        (None, None) => {
+            let st = tension_cutoff(m.cohesion, m.friction_angle_deg.to_radians());
+            (radius(st), st)
+        }
+    }
+}
+
+/// Samples the circle from a stress function (global σxx, σyy, τxy);
+/// points where it gives `None` (outside the body) are skipped.
+pub fn sample_field(frame: &TipFrame, r0: f64, stress: &dyn Fn(P2) -> Option<[f64; 3]>) -> Circle {
+    let mut c = Circle::default();
+    for i in 0..SAMPLES {
+        let th = sample_angle(i);
+        let er = frame.global(P2::new(th.cos(), th.sin()));
+        let et = frame.global(P2::new(-th.sin(), th.cos()));
+        let Some(s) = stress(frame.origin + r0 * er) else {
+            continue;
+        };
+        let traction =
+            |a: P2, b: P2| a.x * (s[0] * b.x + s[2] * b.y) + a.y * (s[2] * b.x + s[1] * b.y);
+        c.theta.push(th);
+        c.sigma_tt.push(traction(et, et));
+        c.tau_rt.push(traction(er, et));
+    }
+    c
+}
+
+/// Samples the circle from the Williams expansion with K_I, K_II and T.
+pub fn sample_williams(s: &Sifs, r0: f64) -> Circle {
+    let mut c = Circle::default();
+    let a = 1.0 / (2.0 * PI * r0).sqrt();
+    for i in 0..SAMPLES {
+        let th = sample_angle(i);
+        let hc = (0.5 * th).cos();
+        let (st, ct) = th.sin_cos();
+        c.theta.push(th);
+        c.sigma_tt
+            .push(a * hc * (s.k1 * hc * hc - 1.5 * s.k2 * st) + s.t * st * st);
+        c.tau_rt
+            .push(0.5 * a * hc * (s.k1 * st + s.k2 * (3.0 * ct - 1.0)) - s.t * st * ct);
+    }
+    c
+}
+
+/// σ_θθ and τ_rθ at angle `th` of a uniform stress `[σ11, σ22, σ12]` given
+/// in the tip frame.
+fn polar(s: [f64; 3], th: f64) -> (f64, f64) {
+    let (st, ct) = th.sin_cos();
+    (
+        s[0] * st * st + s[1] * ct * ct - 2.0 * s[2] * st * ct,
+        (s[1] - s[0]) * st * ct + s[2] * (ct * ct - st * st),
+    )
+}
+
+/// Samples the circle as the singular Williams terms with the
+/// interaction-integral K_I, K_II at r0 plus the uniform (r⁰) stress at the
+/// tip, `uniform = [σ11, σ22, σ12]` in the tip frame (see
+/// [`uniform_stress`]). The result follows the K-field at any r0, however
+/// small against the element size, and carries the normal and shear
+/// tractions of a closed crack's faces, which the traction-free expansion
+/// ([`sample_williams`]) lacks.
+pub fn sample_hybrid(s: &Sifs, uniform: [f64; 3], r0: f64) -> Circle {
+    let mut c = sample_williams(&Sifs { t: 0.0, ..*s }, r0);
+    for (i, &th) in c.theta.iter().enumerate() {
+        let (stt, trt) = polar(uniform, th);
+        c.sigma_tt[i] += stt;
+        c.tau_rt[i] += trt;
+    }
+    c
+}
+
+/// Uniform part of the stress at a tip, `[σ11, σ22, σ12]` in the tip frame,
+/// from the stress `f = [σ12, σ22]` that the faces next to the tip carry
+/// (zero when open) and the interaction-integral T. The faces' boundary
+/// condition fixes σ22 and σ12; the point-force interaction integral
+/// measures `σ11 − σ22` (T = 0 on a closed 45° crack in biaxial compression,
+/// where σ11 = σ22 = −σ_n; T = 7.5 MPa on a closed 30° crack with
+/// σ11 − σ22 = 7.5 MPa), so `σ11 = T + σ22`. On an open crack this is
+/// `[T, 0, 0]`.
+pub fn uniform_stress(s: &Sifs, f: P2) -> [f64; 3] {
+    [s.t + f.y, f.y, f.x]
+}
+
+/// Half width of the window fitted around a maximum, rad.
+const FIT_WINDOW_DEG: f64 = 10.0;
+
+/// Angle and value of the largest sample, refined by a least-squares
+/// parabola over the samples within ±10° of it: robust to flat or slightly
+/// split peaks of a sampled (discretised) field. Falls back to the sample
+/// when the fit has no interior maximum.
+fn argmax(theta: &[f64], v: &[f64]) -> Option<(f64, f64)> {
+    let i = (0..v.len()).max_by(|&a, &b| v[a].total_cmp(&v[b]))?;
+    let w = FIT_WINDOW_DEG.to_radians();
+    let t0 = theta[i];
+    // normal equations of v ≈ a + b x + c x² with x = θ − θ_i
+    let mut m = nalgebra::Matrix3::<f64>::zeros();
+    let mut r = nalgebra::Vector3::<f64>::zeros();
+    for (t, y) in theta.iter().zip(v) {
+        let x = t - t0;
+        if x.abs() > w {
+            continue;
+        }
+        let p = nalgebra::Vector3::new(1.0, x, x * x);
+        m += p * p.transpose();
+        r += p * *y;
+    }
+    let Some(c) = m.lu().solve(&r) else {
+        return Some((t0, v[i]));
+    };
+    if c[2] >= 0.0 {
+        return Some((t0, v[i]));
+    }
+    let x = -c[1] / (2.0 * c[2]);
+    if x.abs() > w || t0 + x < theta[0] || t0 + x > theta[theta.len() - 1] {
+        return Some((t0, v[i]));
+    }
+    Some((t0 + x, v[i].max(c[0] + c[1] * x + c[2] * x * x)))
+}
+
+/// Decision of the chosen criterion at one tip.
+pub fn decide(p: &CriterionParams, circle: &Circle, s: &Sifs, faces: Faces) -> CriterionReport {
+    assess(p, circle, s, faces).0
+}
+
+/// Demand over strength, `d / s`, of one check `d ≥ s`: ≥ 1 exactly when
+/// the check passes (∞ when it passes against a strength ≤ 0, 0 when it
+/// fails there).
+fn ratio(demand: f64, strength: f64) -> f64 {
+    if strength > 0.0 {
+        demand / strength
+    } else if demand >= strength {
+        f64::INFINITY
+    } else {
+        0.0
+    }
+}
+
+/// The decision of the chosen criterion at one tip, and its utilisation:
+/// the largest demand-over-strength ratio of its checks, ≥ 1 exactly when
+/// the tip grows. Comprehensive: `max(σ_θθ(θ0)/σ_t,
+/// |τ_rθ(θ1)| / (max(σ_n, 0) μ_s + c_s))`; MTS: `K_eq / K_IC`; MTS with T:
+/// `σ_θθ,max √(2π r0) / K_IC`. The growth driver's λ_cr search (SPEC §9,
+/// critical control) finds the load at which the largest one over the
+/// free tips reaches 1.
+pub fn assess(
+    p: &CriterionParams,
+    circle: &Circle,
+    s: &Sifs,
+    faces: Faces,
+) -> (CriterionReport, f64) {
+    let mut utilisation = 0.0;
+    let sigma_theta_max = circle
+        .sigma_tt
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
+    let tau_max = circle.tau_rt.iter().map(|v| v.abs()).fold(0.0, f64::max);
+    let mut out = CriterionReport {
+        mode: Mode::None,
+        angle_deg: 0.0,
+        sigma_theta_max: if sigma_theta_max.is_finite() {
+            sigma_theta_max
+        } else {
+            0.0
+        },
+        tau_max,
+    };
+    match p.kind {
+        CriterionKind::Comprehensive => {
+            let Some((t0, s0)) = argmax(&circle.theta, &circle.sigma_tt) else {
+                return (out, utilisation);
+            };
+            utilisation = ratio(s0, p.sigma_t);
+            if s0 >= p.sigma_t {
+                out.mode = Mode::Tension;
+                out.angle_deg = t0.to_degrees();
+                return (out, utilisation);
+            }
+            let abs_tau: Vec<f64> = circle.tau_rt.iter().map(|v| v.abs()).collect();
+            let Some((t1, tau)) = argmax(&circle.theta, &abs_tau) else {
+                return (out, utilisation);
+            };
+            let sigma_n = -interpolate(&circle.theta, &circle.sigma_tt, t1);
+            out.angle_deg = t1.to_degrees();
+            let (friction, cohesion) = p.shear_envelope(faces);
+            let strength = sigma_n.max(0.0) * friction + cohesion;
+            utilisation = f64::max(utilisation, ratio(tau, strength));
+            if tau >= strength {
+                out.mode = Mode::Shear;
+            } else {
+                out.angle_deg = t0.to_degrees();
+            }
+        }
+        CriterionKind::Mts => {
+            let th = mts_angle(s.k1, s.k2);
+            out.angle_deg = th.to_degrees();
+            let hc = (0.5 * th).cos();
+            let keq = s.k1 * hc.powi(3) - 1.5 * s.k2 * hc * th.sin();
+            utilisation = ratio(keq, p.k_ic);
+            if keq >= p.k_ic {
+                out.mode = Mode::Tension;
+            }
+        }
+        CriterionKind::MtsT => {
+            let w = sample_williams(s, p.r0);
+            if let Some((th, smax)) = argmax(&w.theta, &w.sigma_tt) {
+                out.angle_deg = th.to_degrees();
+                utilisation = ratio(smax * (2.0 * PI * p.r0).sqrt(), p.k_ic);
+                if smax * (2.0 * PI * p.r0).sqrt() >= p.k_ic {
+                    out.mode = Mode::Tension;
+                }
+            }
+        }
+    }
+    (out, utilisation)
+}
+
+/// Erdogan–Sih kink angle `θc = 2 arctan[(K_I − √(K_I² + 8K_II²)) / (4K_II)]`.
+pub fn mts_angle(k1: f64, k2: f64) -> f64 {
+    if k2.abs() <= 1e-14 * k1.abs().max(1e-300) {
+        return 0.0;
+    }
+    2.0 * ((k1 - (k1 * k1 + 8.0 * k2 * k2).sqrt()) / (4.0 * k2)).atan()
+}
+
+/// Linear interpolation of samples at angle `t`.
+fn interpolate(theta: &[f64], v: &[f64], t: f64) -> f64 {
+    let i = theta.partition_point(|&a| a < t);
+    if i == 0 {
+        return v[0];
+    }
+    if i >= theta.len() {
+        return v[v.len() - 1];
+    }
+    let s = (t - theta[i - 1]) / (theta[i] - theta[i - 1]);
+    v[i - 1] + s * (v[i] - v[i - 1])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Erdogan–Sih: K_I = K_II gives θc = −53.13°; pure mode II −70.53°.
+    #[test]
+    fn mts_angles_match_closed_form() {
+        assert!((mts_angle(1.0, 1.0).to_degrees() + 53.130_102).abs() < 1e-5);
+        assert!((mts_angle(0.0, 1.0).to_degrees() + 70.528_779).abs() < 1e-5);
+        assert_eq!(mts_angle(1.0, 0.0), 0.0);
+    }
+
+    /// The Williams circle's σ_θθ maximum reproduces the MTS angle.
+    #[test]
+    fn williams_sampling_peaks_at_mts_angle() {
+        let s = Sifs {
+            k1: 1e6,
+            k2: 1e6,
+            t: 0.0,
+        };
+        let c = sample_williams(&s, 0.01);
+        let (th, _) = argmax(&c.theta, &c.sigma_tt).expect("samples");
+        assert!((th.to_degrees() + 53.13).abs() < 0.1, "{}", th.to_degrees());
+    }
+}

@@ -1,0 +1,146 @@
+//! Geometry of crack growth (SPEC §9): extend a tip by Δa at the kink
+//! angle; a segment that would cross another crack ends on it (junction),
+//! one that would leave the specimen ends on the boundary. A tip that comes
+//! within half an element of a crack or the boundary is snapped onto it.
+
+use crate::geometry::cracks::{Crack, TipFrame, first_crossing};
+use crate::geometry::plane::{P2, clip_segment_to_box};
+
+/// Default growth increment `Δa = max(r0, 3h)`: the criterion's radius, but
+/// no shorter than three elements, below which a new segment and the
+/// interaction-integral domain (3h) of its tip are not resolved by the mesh.
+pub fn default_increment(r0: f64, h: f64) -> f64 {
+    r0.max(3.0 * h)
+}
+
+/// What happened to a tip that grew.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Extension {
+    /// Still free at the new point.
+    Free(P2),
+    /// Ended on crack `main`.
+    Junction(P2, usize),
+    /// Ended on the specimen boundary.
+    Boundary(P2),
+}
+
+impl Extension {
+    pub fn point(self) -> P2 {
+        match self {
+            Self::Free(p) | Self::Junction(p, _) | Self::Boundary(p) => p,
+        }
+    }
+}
+
+/// Where tip `k` of crack `c` goes when it grows by `da` at `angle` (rad,
+/// tip frame), in a `width × height` specimen; `snap` is the distance
+/// within which it is put onto a crack or the boundary.
+pub fn extend(
+    cracks: &[Crack],
+    c: usize,
+    k: usize,
+    angle: f64,
+    da: f64,
+    width: f64,
+    height: f64,
+    snap: f64,
+) -> Extension {
+    let frame = TipFrame::of(&cracks[c], k);
+    let d = frame.global(P2::new(angle.cos(), angle.sin()));
+    let a = frame.origin;
+    let reach = da + snap;
+    let b = a + reach * d;
+    // the first crack crossed (own crack: skip the segment at this tip)
+    let mut best: Option<(f64, P2, usize)> = None;
+    for (m, other) in cracks.iter().enumerate() {
+        let hit = if m == c {
+            own_crossing(other, k, a, b)
+        } else {
+            first_crossing(other, a, b)
+        };
+        if let Some((s, p)) = hit
+            && s * reach > 1e-9 * da
+            && best.is_none_or(|(bs, _, _)| s < bs)
+        {
+            best = Some((s, p, m));
+        }
+    }
+    // leaving the specimen
+    let exit =
+        clip_segment_to_box(a, b, P2::zeros(), P2::new(width, height)).map_or(0.0, |(_, t1)| t1);
+    match best {
+        Some((s, p, m)) if s <= exit => Extension::Junction(p, m),
+        _ if exit < 1.0 => Extension::Boundary(a + exit * (b - a)),
+        _ => Extension::Free(a + da * d),
+    }
+}
+
+/// First crossing of `ab` with the crack's own polyline, ignoring the
+/// segment that ends at tip `k`.
+fn own_crossing(crack: &Crack, k: usize, a: P2, b: P2) -> Option<(f64, P2)> {
+    let n = crack.points.len();
+    let skip = if k == 0 { 0 } else { n - 2 };
+    let mut best: Option<(f64, P2)> = None;
+    for (i, (c, d)) in crack.segments().enumerate() {
+        if i == skip {
+            continue;
+        }
+        if let Some((s, _)) = crate::geometry::plane::segment_intersection(a, b, c, d)
+            && best.is_none_or(|(bs, _)| s < bs)
+        {
+            best = Some((s, a + s * (b - a)));
+        }
+    }
+    best
+}
+
+/// Appends the new point at tip `k`.
+pub fn apply(crack: &mut Crack, k: usize, p: P2) {
+    if k == 0 {
+        crack.points.insert(0, p);
+    } else {
+        crack.points.push(p);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::cracks::TipKind;
+
+    fn crack(pts: &[[f64; 2]]) -> Crack {
+        Crack {
+            points: pts.iter().map(|&p| crate::geometry::plane::p2(p)).collect(),
+            tips: [TipKind::Free; 2],
+            friction: 0.0,
+            cohesion: 0.0,
+            kn: 1.0,
+            kt: 1.0,
+        }
+    }
+
+    #[test]
+    fn growth_stops_on_another_crack_and_on_the_boundary() {
+        let cracks = vec![
+            crack(&[[0.2, 0.5], [0.4, 0.5]]),
+            crack(&[[0.45, 0.2], [0.45, 0.8]]),
+        ];
+        // tip 1 of crack 0 grows straight (+x) by 0.1: crosses crack 1 at x = 0.45
+        match extend(&cracks, 0, 1, 0.0, 0.1, 1.0, 1.0, 0.01) {
+            Extension::Junction(p, 1) => {
+                assert!((p.x - 0.45).abs() < 1e-12 && (p.y - 0.5).abs() < 1e-12);
+            }
+            e => panic!("{e:?}"),
+        }
+        // tip 0 of crack 0 grows by 0.25 (−x): leaves at x = 0
+        match extend(&cracks, 0, 0, 0.0, 0.25, 1.0, 1.0, 0.01) {
+            Extension::Boundary(p) => assert!(p.x.abs() < 1e-12),
+            e => panic!("{e:?}"),
+        }
+        // a short step stays free
+        assert!(matches!(
+            extend(&cracks, 0, 0, 0.0, 0.05, 1.0, 1.0, 0.01),
+            Extension::Free(_)
+        ));
+    }
+}

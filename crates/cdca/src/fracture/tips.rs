@@ -1,0 +1,118 @@
+//! Evaluation of every free tip after a solve: SIFs by the interaction
+//! integral (with the contact tractions) and the criterion's decision.
+
+use crate::contact::law::FaceState;
+use crate::discretisation::field::Field;
+use crate::discretisation::xfem::Xfem;
+use crate::fracture::criterion::{
+    Circle, CriterionParams, Faces, assess, sample_field, sample_hybrid, sample_williams,
+    uniform_stress,
+};
+use crate::fracture::sif::{Sifs, tip_sifs};
+use crate::geometry::cracks::TipFrame;
+use crate::geometry::plane::P2;
+use crate::report::TipReport;
+use crate::scene::Sampling;
+
+/// Radius of the interaction-integral domain, in element sizes.
+pub const DOMAIN_RADIUS: f64 = 3.0;
+
+/// K_I, K_II and T of every free tip (in the order crack, tip) with the
+/// interaction-integral domain of [`DOMAIN_RADIUS`] element sizes and the
+/// crack-face `tractions` (one per face piece of `x`, or empty).
+pub fn all_tip_sifs(x: &Xfem, u: &[f64], tractions: &[P2]) -> Vec<(usize, usize, TipFrame, Sifs)> {
+    let field = Field { xfem: x, u };
+    let r_j = DOMAIN_RADIUS * x.mesh.h();
+    let mut out = Vec::new();
+    for (c, crack) in x.funcs.cracks.iter().enumerate() {
+        for k in crack.free_tips() {
+            let frame = TipFrame::of(crack, k);
+            out.push((c, k, frame, tip_sifs(&field, c, &frame, r_j, tractions)));
+        }
+    }
+    out
+}
+
+/// Every free tip evaluated, in the order crack, tip.
+#[derive(Clone, Debug, Default)]
+pub struct Evaluation {
+    pub tips: Vec<TipReport>,
+    /// The sampled circles.
+    pub circles: Vec<Circle>,
+    /// Each tip's utilisation (see [`assess`]): ≥ 1 exactly when it grows.
+    pub utilisation: Vec<f64>,
+}
+
+/// Tip reports, the sampled circles and the utilisations, in the order
+/// crack, tip.
+pub fn evaluate_tips(
+    x: &Xfem,
+    u: &[f64],
+    states: &[FaceState],
+    params: &CriterionParams,
+    sampling: Sampling,
+) -> Evaluation {
+    let field = Field { xfem: x, u };
+    let tractions: Vec<P2> = x
+        .faces
+        .iter()
+        .zip(states)
+        .map(|(fp, s)| s.traction(fp))
+        .collect();
+    let mut out = Evaluation::default();
+    for (c, k, frame, s) in all_tip_sifs(x, u, &tractions) {
+        let circle = match sampling {
+            Sampling::Field => sample_field(&frame, params.r0, &|p| field.stress_averaged_at(p)),
+            Sampling::Williams => sample_williams(&s, params.r0),
+            Sampling::Hybrid => sample_hybrid(
+                &s,
+                uniform_stress(&s, face_stress(x, &tractions, c, &frame)),
+                params.r0,
+            ),
+        };
+        let crack = &x.funcs.cracks[c];
+        let faces = Faces {
+            friction: crack.friction,
+            cohesion: crack.cohesion,
+        };
+        let (criterion, utilisation) = assess(params, &circle, &s, faces);
+        out.tips.push(TipReport {
+            crack: c,
+            tip: k,
+            x: frame.origin.x,
+            y: frame.origin.y,
+            k1: s.k1,
+            k2: s.k2,
+            t_stress: s.t,
+            criterion,
+        });
+        out.circles.push(circle);
+        out.utilisation.push(utilisation);
+    }
+    out
+}
+
+/// Stress `[σ12, σ22]` (tip frame) on the faces next to a tip: the mean,
+/// weighted by length, over crack `c`'s face pieces whose midpoints lie
+/// within two element sizes of the tip. Zero on open faces.
+///
+/// A piece's traction `p = p_N n + p_T t = k_N g_N n + k_T (g_T − g_T^s) t`
+/// is the force per area on the `−` side (`p_N < 0` in compression), so
+/// `σ·n = p`; with `e2 = ±n`, `σ22 = ±p·e2` and `σ12 = ±p·e1`.
+fn face_stress(x: &Xfem, tractions: &[P2], c: usize, frame: &TipFrame) -> P2 {
+    let reach = 2.0 * x.mesh.h();
+    let (mut sum, mut w) = (P2::zeros(), 0.0);
+    for (fp, p) in x.faces.iter().zip(tractions) {
+        if fp.crack != c || (fp.x - frame.origin).norm() > reach {
+            continue;
+        }
+        let side = if fp.n.dot(&frame.e2) >= 0.0 {
+            1.0
+        } else {
+            -1.0
+        };
+        sum += side * fp.w * P2::new(p.dot(&frame.e1), p.dot(&frame.e2));
+        w += fp.w;
+    }
+    if w > 0.0 { sum / w } else { P2::zeros() }
+}

@@ -1,0 +1,188 @@
+//! Cracks as explicit polylines with the kind of each tip (SPEC §2).
+//!
+//! The level sets are evaluated exactly from the polyline: `φ` is the signed
+//! distance (positive on the left of the polyline's direction) and, for tip
+//! `k`, `ψ = (x − x_tip)·t_tip` with `t_tip` the outward tangent.
+
+use crate::geometry::plane::{P2, distance_to_segment, perp, signed_distance};
+use crate::scene::CrackSpec;
+
+/// What a crack end is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TipKind {
+    /// A free tip: tip-enriched, may grow.
+    Free,
+    /// On the specimen boundary: no tip enrichment.
+    Boundary,
+    /// Ends on crack `main`: no tip enrichment; junction enrichment.
+    Junction { main: usize },
+}
+
+/// One crack: geometry, tip kinds and face properties.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Crack {
+    pub points: Vec<P2>,
+    pub tips: [TipKind; 2],
+    /// Coulomb friction coefficient μ.
+    pub friction: f64,
+    /// Face cohesion c_c, Pa.
+    pub cohesion: f64,
+    /// Normal stiffness k_N, Pa/m.
+    pub kn: f64,
+    /// Tangential stiffness k_T, Pa/m.
+    pub kt: f64,
+}
+
+impl Crack {
+    /// Builds a crack from the scene; `h` is the element size and `young`
+    /// Young's modulus (for the penalty default `k_N = 100 E/h`).
+    pub fn from_spec(spec: &CrackSpec, h: f64, young: f64) -> Self {
+        let points: Vec<P2> = spec
+            .polyline(h)
+            .into_iter()
+            .map(crate::geometry::plane::p2)
+            .collect();
+        let kn = spec.normal_stiffness.unwrap_or(100.0 * young / h);
+        let kt = spec.shear_stiffness.unwrap_or(0.1 * kn);
+        Self {
+            points,
+            tips: [TipKind::Free; 2],
+            friction: spec.friction,
+            cohesion: spec.cohesion,
+            kn,
+            kt,
+        }
+    }
+
+    /// Position of tip `k` (0 = first point, 1 = last).
+    pub fn tip_point(&self, k: usize) -> P2 {
+        if k == 0 {
+            self.points[0]
+        } else {
+            self.points[self.points.len() - 1]
+        }
+    }
+
+    /// Outward unit tangent at tip `k`.
+    pub fn tip_dir(&self, k: usize) -> P2 {
+        let n = self.points.len();
+        if k == 0 {
+            (self.points[0] - self.points[1]).normalize()
+        } else {
+            (self.points[n - 1] - self.points[n - 2]).normalize()
+        }
+    }
+
+    /// Signed distance φ(x) to the polyline.
+    pub fn phi(&self, x: P2) -> f64 {
+        signed_distance(x, &self.points)
+    }
+
+    /// Distance from `x` to the crack.
+    pub fn distance(&self, x: P2) -> f64 {
+        self.points
+            .windows(2)
+            .map(|w| distance_to_segment(x, w[0], w[1]))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// Total length, m.
+    pub fn length(&self) -> f64 {
+        self.points.windows(2).map(|w| (w[1] - w[0]).norm()).sum()
+    }
+
+    /// Segments `(a, b)` of the polyline.
+    pub fn segments(&self) -> impl Iterator<Item = (P2, P2)> + '_ {
+        self.points.windows(2).map(|w| (w[0], w[1]))
+    }
+
+    /// Free tips (0, 1 or 2 of them).
+    pub fn free_tips(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..2).filter(|&k| self.tips[k] == TipKind::Free)
+    }
+}
+
+/// Local frame of a tip: origin at the tip, `e1` along the outward tangent,
+/// `e2 = e1` turned +90°.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TipFrame {
+    pub origin: P2,
+    pub e1: P2,
+    pub e2: P2,
+}
+
+impl TipFrame {
+    pub fn of(crack: &Crack, k: usize) -> Self {
+        let e1 = crack.tip_dir(k);
+        Self {
+            origin: crack.tip_point(k),
+            e1,
+            e2: perp(e1),
+        }
+    }
+
+    /// Local coordinates `(x1, x2)` of a global point.
+    pub fn local(&self, x: P2) -> P2 {
+        let d = x - self.origin;
+        P2::new(d.dot(&self.e1), d.dot(&self.e2))
+    }
+
+    /// Global components of a local vector.
+    pub fn global(&self, v: P2) -> P2 {
+        self.e1 * v.x + self.e2 * v.y
+    }
+}
+
+/// Classifies every tip: on the boundary of `[0,w]×[0,h]`, on another crack
+/// (junction), or free. `tol` is the snapping distance.
+pub fn classify_tips(cracks: &mut [Crack], width: f64, height: f64, tol: f64) {
+    for j in 0..cracks.len() {
+        for k in 0..2 {
+            let p = cracks[j].tip_point(k);
+            let on_boundary = p.x <= tol || p.y <= tol || p.x >= width - tol || p.y >= height - tol;
+            let kind = if on_boundary {
+                TipKind::Boundary
+            } else if let Some(m) =
+                (0..cracks.len()).find(|&m| m != j && cracks[m].distance(p) <= tol)
+            {
+                TipKind::Junction { main: m }
+            } else {
+                TipKind::Free
+            };
+            cracks[j].tips[k] = kind;
+        }
+    }
+}
+
+/// Reference side of a junction: the sign of `φ_main` on the secondary
+/// crack's own body (at the middle of its segment next to tip `k`).
+pub fn junction_side(secondary: &Crack, k: usize, main: &Crack) -> f64 {
+    let n = secondary.points.len();
+    let (a, b) = if k == 0 {
+        (secondary.points[0], secondary.points[1])
+    } else {
+        (secondary.points[n - 1], secondary.points[n - 2])
+    };
+    let probe = a + 0.5 * (b - a);
+    let s = main.phi(probe);
+    if s == 0.0 {
+        // the segment lies on the main crack: fall back to its far end
+        main.phi(b).signum()
+    } else {
+        s.signum()
+    }
+}
+
+/// Whether the segment `ab` crosses the crack; returns the first crossing
+/// along `ab` as `(parameter on ab, point)`.
+pub fn first_crossing(crack: &Crack, a: P2, b: P2) -> Option<(f64, P2)> {
+    let mut best: Option<(f64, P2)> = None;
+    for (c, d) in crack.segments() {
+        if let Some((s, _)) = crate::geometry::plane::segment_intersection(a, b, c, d)
+            && best.is_none_or(|(bs, _)| s < bs)
+        {
+            best = Some((s, a + s * (b - a)));
+        }
+    }
+    best
+}

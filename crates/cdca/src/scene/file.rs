@@ -1,0 +1,474 @@
+//! The scene file (SPEC §10): a versioned serde type, validated on load.
+//!
+//! Parse with [`Scene::from_json`]; it rejects unknown fields and every invalid
+//! value before any work is done, naming the field and the value.
+//! All quantities are SI (m, Pa, Pa/m); compression is negative.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::SceneError;
+
+/// A whole scene: specimen, mesh, material, cracks, supports and loads, and
+/// the settings of criterion, growth and solver.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Free text shown to the user.
+    #[serde(default)]
+    pub name: String,
+    /// Longer description (optional).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub description: String,
+    pub specimen: Specimen,
+    pub mesh: MeshSpec,
+    pub material: Material,
+    #[serde(default)]
+    pub cracks: Vec<CrackSpec>,
+    #[serde(default)]
+    pub boundary: Boundary,
+    #[serde(default)]
+    pub criterion: CriterionSpec,
+    #[serde(default)]
+    pub growth: GrowthSpec,
+    #[serde(default)]
+    pub solver: SolverSpec,
+}
+
+/// Rectangle `width × height` with its lower-left corner at the origin.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Specimen {
+    /// m
+    pub width: f64,
+    /// m
+    pub height: f64,
+    /// m (forces are per unit thickness times `thickness`)
+    #[serde(default = "one")]
+    pub thickness: f64,
+}
+
+/// Structured `nx × ny` grid of bilinear quadrilaterals.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    pub nx: usize,
+    pub ny: usize,
+    /// Smallest radius of the tip enrichment in element sizes (default
+    /// 2.5). The zone is geometric above it: a fifth of the crack's length
+    /// per tip (and of its end segment), at most 16 element sizes (see
+    /// [`XfemParams`](crate::discretisation::xfem::XfemParams)).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub enrichment_radius: Option<f64>,
+}
+
+/// Plane stress or plane strain.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Plane {
+    #[default]
+    Stress,
+    Strain,
+}
+
+/// Isotropic linear elastic rock with its strength parameters.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Material {
+    /// Young's modulus E, Pa.
+    pub young: f64,
+    /// Poisson's ratio ν.
+    #[serde(default = "default_poisson")]
+    pub poisson: f64,
+    #[serde(default)]
+    pub plane: Plane,
+    /// Cohesion c of the rock (shear criterion), Pa.
+    #[serde(default = "default_cohesion")]
+    pub cohesion: f64,
+    /// Internal friction angle φ of the rock, degrees.
+    #[serde(default = "default_friction_angle")]
+    pub friction_angle_deg: f64,
+    /// Mode-I toughness K_IC, Pa·√m.
+    #[serde(default = "default_k_ic")]
+    pub k_ic: f64,
+    /// Mode-II toughness K_IIC, Pa·√m.
+    #[serde(default = "default_k_iic")]
+    pub k_iic: f64,
+    /// Tensile strength σ_t, Pa; `null` means `K_IC / √(2π r0)` when
+    /// `criterion.r0` is given, else the Mohr–Coulomb tension cut-off
+    /// `2c cos φ / (1 + sin φ)`.
+    #[serde(default)]
+    pub tensile_strength: Option<f64>,
+}
+
+/// Geometry of an arc crack: centre, radius, start and end angle (degrees,
+/// counter-clockwise from +x).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ArcSpec {
+    pub center: [f64; 2],
+    pub radius: f64,
+    pub start_deg: f64,
+    pub end_deg: f64,
+}
+
+/// One crack: a polyline (or an arc) and its face properties.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CrackSpec {
+    /// Polyline vertices, m. Exactly one of `points` and `arc` is given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub points: Option<Vec<[f64; 2]>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub arc: Option<ArcSpec>,
+    /// Coulomb friction coefficient μ of the faces.
+    #[serde(default)]
+    pub friction: f64,
+    /// Cohesion of the faces c_c, Pa.
+    #[serde(default)]
+    pub cohesion: f64,
+    /// Normal joint stiffness k_N, Pa/m; `None` means the penalty `100 E/h`.
+    #[serde(default)]
+    pub normal_stiffness: Option<f64>,
+    /// Shear joint stiffness k_T, Pa/m; `None` means `k_N/10`.
+    #[serde(default)]
+    pub shear_stiffness: Option<f64>,
+}
+
+/// Support or load on one side of the specimen.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
+pub enum SideBc {
+    /// Traction-free.
+    #[default]
+    Free,
+    /// Both displacements zero.
+    Fixed,
+    /// Normal displacement zero.
+    Roller,
+    /// Uniform traction: `normal` along the outward normal (tension
+    /// positive), `shear` along the global axis of the side (+x on top and
+    /// bottom, +y on left and right), both in Pa.
+    Traction {
+        #[serde(default)]
+        normal: f64,
+        #[serde(default)]
+        shear: f64,
+    },
+}
+
+/// Which displacement components a point support fixes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Fix {
+    X,
+    Y,
+    Xy,
+}
+
+/// A point support: fixes the node nearest to `at`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointSupport {
+    pub at: [f64; 2],
+    pub fix: Fix,
+}
+
+/// Supports and loads of the four sides plus point supports.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Boundary {
+    #[serde(default = "roller")]
+    pub bottom: SideBc,
+    #[serde(default = "roller")]
+    pub left: SideBc,
+    #[serde(default)]
+    pub top: SideBc,
+    #[serde(default)]
+    pub right: SideBc,
+    #[serde(default)]
+    pub points: Vec<PointSupport>,
+}
+
+impl Default for Boundary {
+    fn default() -> Self {
+        Self {
+            bottom: SideBc::Roller,
+            left: SideBc::Roller,
+            top: SideBc::Free,
+            right: SideBc::Free,
+            points: Vec::new(),
+        }
+    }
+}
+
+/// Which fracture criterion decides growth (SPEC §8).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CriterionKind {
+    /// Tensile first, then Mohr–Coulomb shear (the paper's).
+    #[default]
+    Comprehensive,
+    /// Maximum tangential stress from K_I, K_II (Erdogan–Sih).
+    Mts,
+    /// Generalised MTS with the T-stress term.
+    MtsT,
+}
+
+/// Where σ_θθ and τ_rθ on the circle r0 come from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Sampling {
+    /// From the computed (enriched) stress field.
+    Field,
+    /// From the Williams expansion with K_I, K_II, T.
+    Williams,
+    /// Singular Williams terms with K_I, K_II at r0 plus the uniform part of
+    /// the computed field at the tip (T, face tractions, far field), fitted
+    /// on rings of 2–4 element sizes: independent of r0/h.
+    #[default]
+    Hybrid,
+}
+
+/// Shear strength of the comprehensive criterion's shear branch.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ShearStrength {
+    /// `|τ| ≥ σ_n μ + c_c + K_IIC/√(2π r0)`: friction and cohesion of the
+    /// crack's own faces plus the shear analogue of σ_t; on a closed crack
+    /// ahead of the tip this is `K_II ≥ K_IIC`.
+    #[default]
+    Faces,
+    /// `|τ| ≥ σ_n tan φ + c` with the rock's friction angle and cohesion.
+    Rock,
+}
+
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CriterionSpec {
+    #[serde(default)]
+    pub kind: CriterionKind,
+    /// Radius of the evaluation circle, m; `None` means the process-zone
+    /// size `(K_IC/σ_t)² / 2π` (see `criterion::radius_and_strength`).
+    #[serde(default)]
+    pub r0: Option<f64>,
+    #[serde(default)]
+    pub sampling: Sampling,
+    #[serde(default)]
+    pub shear_strength: ShearStrength,
+}
+
+/// How the load follows the growth (SPEC §9 "Control").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GrowthControl {
+    /// Proportional ramp to the scene's load in `load_steps` increments.
+    #[default]
+    Load,
+    /// Growth to failure: before each step the load factor λ_cr at which
+    /// the most critical free tip just meets its criterion.
+    Critical,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GrowthSpec {
+    #[serde(default)]
+    pub control: GrowthControl,
+    /// Growth increment Δa, m; `None` means `max(r0, 3h)`.
+    #[serde(default)]
+    pub increment: Option<f64>,
+    #[serde(default = "default_load_steps")]
+    pub load_steps: usize,
+    #[serde(default = "default_max_growth_per_step")]
+    pub max_growth_per_step: usize,
+    #[serde(default = "default_max_steps")]
+    pub max_steps: usize,
+    /// With critical control, growth ends (`completed`) when λ_cr would
+    /// exceed this factor of the scene's loads.
+    #[serde(default = "default_max_load_factor")]
+    pub max_load_factor: f64,
+}
+
+impl Default for GrowthSpec {
+    fn default() -> Self {
+        Self {
+            increment: None,
+            load_steps: default_load_steps(),
+            max_growth_per_step: default_max_growth_per_step(),
+            max_steps: default_max_steps(),
+            control: GrowthControl::default(),
+            max_load_factor: default_max_load_factor(),
+        }
+    }
+}
+
+/// Which linear solver runs (SPEC §6).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SolverKind {
+    /// Sparse Cholesky of the assembled matrix.
+    #[default]
+    Direct,
+    /// The paper's cell-by-cell relaxation (block Gauss–Seidel / SOR).
+    Automaton,
+    /// Conjugate gradients with the automaton's symmetric sweep.
+    Cg,
+    /// Conjugate gradients with sweep smoothing plus a coarse-grid correction.
+    Multigrid,
+}
+
+/// Order in which the automaton visits its cells.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Ordering {
+    #[default]
+    Lexicographic,
+    /// Four-colour ordering of the nodes (the Q4 analogue of red–black).
+    RedBlack,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    #[serde(default)]
+    pub kind: SolverKind,
+    /// Relative residual tolerance of iterative solvers.
+    #[serde(default = "default_tolerance")]
+    pub tolerance: f64,
+    #[serde(default = "default_max_iterations")]
+    pub max_iterations: usize,
+    /// Over-relaxation factor ω of the automaton, in (0, 2).
+    #[serde(default = "one")]
+    pub omega: f64,
+    #[serde(default)]
+    pub ordering: Ordering,
+    /// Relative change of the displacement that ends the contact iteration.
+    #[serde(default = "default_contact_tolerance")]
+    pub contact_tolerance: f64,
+    #[serde(default = "default_max_contact_iterations")]
+    pub max_contact_iterations: usize,
+}
+
+impl Default for SolverSpec {
+    fn default() -> Self {
+        Self {
+            kind: SolverKind::Direct,
+            tolerance: default_tolerance(),
+            max_iterations: default_max_iterations(),
+            omega: 1.0,
+            ordering: Ordering::Lexicographic,
+            contact_tolerance: default_contact_tolerance(),
+            max_contact_iterations: default_max_contact_iterations(),
+        }
+    }
+}
+
+fn one() -> f64 {
+    1.0
+}
+fn roller() -> SideBc {
+    SideBc::Roller
+}
+fn default_poisson() -> f64 {
+    0.25
+}
+fn default_cohesion() -> f64 {
+    15e6
+}
+fn default_friction_angle() -> f64 {
+    49.0
+}
+fn default_k_ic() -> f64 {
+    1.03e6
+}
+fn default_k_iic() -> f64 {
+    2.52e6
+}
+fn default_load_steps() -> usize {
+    10
+}
+fn default_max_growth_per_step() -> usize {
+    20
+}
+fn default_max_steps() -> usize {
+    200
+}
+fn default_max_load_factor() -> f64 {
+    100.0
+}
+fn default_tolerance() -> f64 {
+    1e-10
+}
+fn default_max_iterations() -> usize {
+    100_000
+}
+fn default_contact_tolerance() -> f64 {
+    1e-8
+}
+fn default_max_contact_iterations() -> usize {
+    50
+}
+
+impl Scene {
+    /// Parses and validates a scene. Unknown fields, wrong types and invalid
+    /// values are errors naming the field.
+    pub fn from_json(text: &str) -> Result<Self, SceneError> {
+        let scene: Scene =
+            serde_json::from_str(text).map_err(|e| SceneError::Parse(e.to_string()))?;
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// Pretty JSON; `from_json(to_json(s)?) == s`.
+    pub fn to_json(&self) -> Result<String, SceneError> {
+        serde_json::to_string_pretty(self).map_err(|e| SceneError::Write(e.to_string()))
+    }
+
+    /// Element size h (the larger of the two cell sides), m.
+    pub fn element_size(&self) -> f64 {
+        (self.specimen.width / self.mesh.nx as f64).max(self.specimen.height / self.mesh.ny as f64)
+    }
+
+    /// Polyline of crack `i` (arcs sampled, see [`CrackSpec::polyline`]).
+    pub fn crack_polyline(&self, i: usize) -> Vec<[f64; 2]> {
+        self.cracks[i].polyline(self.element_size())
+    }
+}
+
+impl CrackSpec {
+    /// Straight crack between two points with no friction, no cohesion and
+    /// the penalty stiffness.
+    pub fn segment(a: [f64; 2], b: [f64; 2]) -> Self {
+        Self {
+            points: Some(vec![a, b]),
+            arc: None,
+            friction: 0.0,
+            cohesion: 0.0,
+            normal_stiffness: None,
+            shear_stiffness: None,
+        }
+    }
+
+    /// The crack as a polyline. An arc is sampled with segments no longer
+    /// than `h/2` (and at least 8 of them).
+    pub fn polyline(&self, h: f64) -> Vec<[f64; 2]> {
+        if let Some(points) = &self.points {
+            return points.clone();
+        }
+        let Some(arc) = &self.arc else {
+            return Vec::new();
+        };
+        let sweep = (arc.end_deg - arc.start_deg).to_radians();
+        let length = (sweep * arc.radius).abs();
+        let n = ((length / (0.5 * h)).ceil() as usize).clamp(8, 10_000);
+        (0..=n)
+            .map(|k| {
+                let a = arc.start_deg.to_radians() + sweep * k as f64 / n as f64;
+                [
+                    arc.center[0] + arc.radius * a.cos(),
+                    arc.center[1] + arc.radius * a.sin(),
+                ]
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,457 @@
+//! Validation of a parsed [`Scene`](crate::scene::Scene) (SPEC §10).
+//!
+//! Every value is checked before any work is done. The first problem found is
+//! returned as [`SceneError::Invalid`] whose `field` is a dotted JSON path
+//! (`material.poisson`, `cracks[1].points[0]`, `boundary.top.normal`).
+
+mod rigid_body;
+
+use crate::error::SceneError;
+use crate::scene::{ArcSpec, CrackSpec, Material, Scene, SideBc};
+
+/// Largest accepted mesh, in elements (`nx × ny`).
+pub const MAX_ELEMENTS: usize = 4_000_000;
+
+type Check = Result<(), SceneError>;
+
+impl Scene {
+    /// Checks every value; the first problem found is returned, naming the
+    /// field and the value.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        self.validate_specimen_and_mesh()?;
+        validate_material(&self.material)?;
+        for (i, crack) in self.cracks.iter().enumerate() {
+            self.validate_crack(i, crack)?;
+        }
+        self.validate_boundary()?;
+        self.validate_settings()?;
+        self.validate_rigid_body()
+    }
+
+    fn validate_specimen_and_mesh(&self) -> Check {
+        let s = &self.specimen;
+        positive("specimen.width", s.width)?;
+        positive("specimen.height", s.height)?;
+        positive("specimen.thickness", s.thickness)?;
+        let m = &self.mesh;
+        at_least_one("mesh.nx", m.nx)?;
+        at_least_one("mesh.ny", m.ny)?;
+        let small = m.nx.checked_mul(m.ny).is_some_and(|n| n <= MAX_ELEMENTS);
+        let reason = format!("more than {MAX_ELEMENTS} elements; use a coarser mesh");
+        ensure(small, "mesh", format!("{} × {}", m.nx, m.ny), reason)?;
+        if let Some(r) = m.enrichment_radius {
+            let field = "mesh.enrichment_radius";
+            ensure(
+                finite(field, r)? >= 1.0,
+                field,
+                r,
+                "must be at least 1 (element sizes)",
+            )?;
+        }
+        Ok(())
+    }
+
+    fn validate_crack(&self, i: usize, crack: &CrackSpec) -> Check {
+        let field = |name: &str| format!("cracks[{i}]{name}");
+        match (&crack.points, &crack.arc) {
+            (Some(points), None) => {
+                let name = |k: usize| field(&format!(".points[{k}]"));
+                self.validate_polyline(&field(".points"), points, name)?;
+            }
+            (None, Some(arc)) => self.validate_arc(&field(".arc"), arc, crack)?,
+            (points, _) => {
+                let value = if points.is_some() { "both" } else { "neither" };
+                let reason = "give exactly one of `points` and `arc`";
+                return Err(SceneError::invalid(field(""), value, reason));
+            }
+        }
+        non_negative(&field(".friction"), crack.friction)?;
+        non_negative(&field(".cohesion"), crack.cohesion)?;
+        if let Some(k) = crack.normal_stiffness {
+            positive(&field(".normal_stiffness"), k)?;
+        }
+        if let Some(k) = crack.shear_stiffness {
+            positive(&field(".shear_stiffness"), k)?;
+        }
+        Ok(())
+    }
+
+    /// A crack polyline: at least 2 finite points inside the specimen, a
+    /// length and no zero-length segment. `point_field(k)` names point `k`.
+    fn validate_polyline(
+        &self,
+        field: &str,
+        points: &[[f64; 2]],
+        point_field: impl Fn(usize) -> String,
+    ) -> Check {
+        let count = format!("{} point(s)", points.len());
+        ensure(
+            points.len() >= 2,
+            field,
+            count,
+            "a crack needs at least 2 points",
+        )?;
+        for (k, &p) in points.iter().enumerate() {
+            self.inside(&point_field(k), p)?;
+        }
+        let tiny = 1e-12 * self.specimen.width.max(self.specimen.height);
+        let length: f64 = points.windows(2).map(|s| distance(s[0], s[1])).sum();
+        ensure(length > tiny, field, length, "the crack has zero length")?;
+        for k in 1..points.len() {
+            let reason = "repeats the previous point (zero-length segment)";
+            let long = distance(points[k - 1], points[k]) > tiny;
+            ensure(long, &point_field(k), fmt_point(points[k]), reason)?;
+        }
+        Ok(())
+    }
+
+    fn validate_arc(&self, field: &str, arc: &ArcSpec, crack: &CrackSpec) -> Check {
+        finite_point(&format!("{field}.center"), arc.center)?;
+        positive(&format!("{field}.radius"), arc.radius)?;
+        finite(&format!("{field}.start_deg"), arc.start_deg)?;
+        let end = format!("{field}.end_deg");
+        let sweep = (finite(&end, arc.end_deg)? - arc.start_deg).abs();
+        let reason = "equals start_deg: the arc has zero length";
+        ensure(sweep > 0.0, &end, arc.end_deg, reason)?;
+        let reason = "the arc sweeps 360° or more (a closed crack cuts a piece free)";
+        ensure(sweep < 360.0, &end, arc.end_deg, reason)?;
+        let polyline = crack.polyline(self.element_size());
+        self.validate_polyline(field, &polyline, |_| field.to_owned())
+    }
+
+    fn validate_boundary(&self) -> Check {
+        let b = &self.boundary;
+        let sides = [
+            ("bottom", b.bottom),
+            ("left", b.left),
+            ("top", b.top),
+            ("right", b.right),
+        ];
+        for (side, bc) in sides {
+            if let SideBc::Traction { normal, shear } = bc {
+                finite(&format!("boundary.{side}.normal"), normal)?;
+                finite(&format!("boundary.{side}.shear"), shear)?;
+            }
+        }
+        for (k, point) in b.points.iter().enumerate() {
+            self.inside(&format!("boundary.points[{k}].at"), point.at)?;
+        }
+        Ok(())
+    }
+
+    fn validate_settings(&self) -> Check {
+        if let Some(r0) = self.criterion.r0 {
+            positive("criterion.r0", r0)?;
+        }
+        let m = &self.material;
+        if self.criterion.r0.is_none() && m.tensile_strength.is_none() {
+            let reason = "gives no tensile strength 2c cos φ/(1 + sin φ) for the default \
+                          criterion radius (K_IC/σ_t)²/2π: give material.cohesion > 0, \
+                          material.tensile_strength or criterion.r0";
+            ensure(m.cohesion > 0.0, "material.cohesion", m.cohesion, reason)?;
+        }
+        let g = &self.growth;
+        if let Some(da) = g.increment {
+            positive("growth.increment", da)?;
+        }
+        at_least_one("growth.load_steps", g.load_steps)?;
+        at_least_one("growth.max_steps", g.max_steps)?;
+        at_least_one("growth.max_growth_per_step", g.max_growth_per_step)?;
+        positive("growth.max_load_factor", g.max_load_factor)?;
+        let s = &self.solver;
+        open_interval("solver.tolerance", s.tolerance, 0.0, 1.0)?;
+        at_least_one("solver.max_iterations", s.max_iterations)?;
+        open_interval("solver.omega", s.omega, 0.0, 2.0)?;
+        positive("solver.contact_tolerance", s.contact_tolerance)?;
+        at_least_one("solver.max_contact_iterations", s.max_contact_iterations)
+    }
+
+    /// `p` is finite and inside the closed specimen rectangle (tolerance
+    /// 1e-9 of the specimen size).
+    fn inside(&self, field: &str, p: [f64; 2]) -> Check {
+        finite_point(field, p)?;
+        let (w, h) = (self.specimen.width, self.specimen.height);
+        let tol = 1e-9 * w.max(h);
+        let inside = (-tol..=w + tol).contains(&p[0]) && (-tol..=h + tol).contains(&p[1]);
+        let reason = format!("outside the specimen [0, {w}] × [0, {h}]");
+        ensure(inside, field, fmt_point(p), reason)
+    }
+}
+
+fn validate_material(m: &Material) -> Check {
+    positive("material.young", m.young)?;
+    let nu = finite("material.poisson", m.poisson)?;
+    let reason = "must be below 0.5 (0.5 is incompressible: the stiffness is singular)";
+    ensure(nu < 0.5, "material.poisson", nu, reason)?;
+    // ν = −1 itself is excluded too: the shear modulus E/(2(1+ν)) is infinite.
+    ensure(nu > -1.0, "material.poisson", nu, "must be greater than -1")?;
+    non_negative("material.cohesion", m.cohesion)?;
+    let field = "material.friction_angle_deg";
+    let phi = finite(field, m.friction_angle_deg)?;
+    ensure(
+        (0.0..90.0).contains(&phi),
+        field,
+        phi,
+        "must be in [0, 90) degrees",
+    )?;
+    positive("material.k_ic", m.k_ic)?;
+    positive("material.k_iic", m.k_iic)?;
+    if let Some(st) = m.tensile_strength {
+        positive("material.tensile_strength", st)?;
+    }
+    Ok(())
+}
+
+/// `Ok` when `ok`, otherwise the error naming `field`, `value` and `reason`.
+fn ensure(ok: bool, field: &str, value: impl ToString, reason: impl Into<String>) -> Check {
+    if ok {
+        Ok(())
+    } else {
+        Err(SceneError::invalid(field, value, reason))
+    }
+}
+
+fn finite(field: &str, v: f64) -> Result<f64, SceneError> {
+    ensure(v.is_finite(), field, v, "must be a finite number").map(|()| v)
+}
+
+fn finite_point(field: &str, p: [f64; 2]) -> Check {
+    let ok = p.iter().all(|c| c.is_finite());
+    ensure(ok, field, fmt_point(p), "must be finite numbers")
+}
+
+fn positive(field: &str, v: f64) -> Check {
+    ensure(finite(field, v)? > 0.0, field, v, "must be positive")
+}
+
+fn non_negative(field: &str, v: f64) -> Check {
+    ensure(finite(field, v)? >= 0.0, field, v, "must not be negative")
+}
+
+fn open_interval(field: &str, v: f64, low: f64, high: f64) -> Check {
+    let ok = finite(field, v)? > low && v < high;
+    ensure(ok, field, v, format!("must be in ({low}, {high})"))
+}
+
+fn at_least_one(field: &str, n: usize) -> Check {
+    ensure(n >= 1, field, n, "must be at least 1")
+}
+
+fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (b[0] - a[0]).hypot(b[1] - a[1])
+}
+
+fn fmt_point(p: [f64; 2]) -> String {
+    format!("[{}, {}]", p[0], p[1])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Fix, Plane, PointSupport, SideBc::Traction};
+
+    /// The SPEC §10 example with every optional field set and an arc crack.
+    const FULL: &str = r#"{
+      "name": "inclined crack, biaxial compression",
+      "description": "every field given",
+      "specimen": { "width": 0.3, "height": 0.3, "thickness": 1.0 },
+      "mesh": { "nx": 30, "ny": 30, "enrichment_radius": 2.5 },
+      "material": { "young": 4.78e9, "poisson": 0.25, "plane": "stress", "cohesion": 15e6,
+        "friction_angle_deg": 49.0, "k_ic": 1.03e6, "k_iic": 2.52e6, "tensile_strength": 5e6 },
+      "cracks": [
+        { "points": [[0.1, 0.1], [0.2, 0.2]], "friction": 0.5, "cohesion": 0.0,
+          "normal_stiffness": 200e9, "shear_stiffness": 20e9 },
+        { "arc": { "center": [0.2, 0.22], "radius": 0.04, "start_deg": 0.0, "end_deg": 90.0 } }
+      ],
+      "boundary": {
+        "bottom": { "kind": "roller" }, "left": { "kind": "roller" },
+        "top": { "kind": "traction", "normal": -10e6, "shear": 0.0 },
+        "right": { "kind": "traction", "normal": -2e6, "shear": 1e5 },
+        "points": [{ "at": [0.3, 0.3], "fix": "x" }]
+      },
+      "criterion": { "kind": "mts_t", "r0": 0.03, "sampling": "williams" },
+      "growth": { "increment": 0.01, "load_steps": 5, "max_growth_per_step": 3, "max_steps": 50 },
+      "solver": { "kind": "cg", "tolerance": 1e-10, "max_iterations": 1000, "omega": 1.2,
+        "ordering": "red_black", "contact_tolerance": 1e-8, "max_contact_iterations": 50 }
+    }"#;
+
+    fn full() -> Scene {
+        Scene::from_json(FULL).expect("the full example scene is valid")
+    }
+
+    fn field_of(scene: &Scene) -> Option<String> {
+        match scene.validate() {
+            Err(SceneError::Invalid { field, .. }) => Some(field),
+            Err(e @ (SceneError::Parse(_) | SceneError::Write(_))) => {
+                panic!("validate returned a parse or write error: {e}")
+            }
+            Ok(()) => None,
+        }
+    }
+
+    type Case = (&'static str, fn(&mut Scene));
+
+    /// Every invalid case of SPEC §10 and the brief, with the field it names.
+    #[rustfmt::skip]
+    const CASES: &[Case] = &[
+        ("specimen.width", |s| s.specimen.width = 0.0),
+        ("specimen.width", |s| s.specimen.width = -0.3),
+        ("specimen.width", |s| s.specimen.width = f64::NAN),
+        ("specimen.height", |s| s.specimen.height = 0.0),
+        ("specimen.height", |s| s.specimen.height = f64::INFINITY),
+        ("specimen.thickness", |s| s.specimen.thickness = -1.0),
+        ("mesh.nx", |s| s.mesh.nx = 0),
+        ("mesh.ny", |s| s.mesh.ny = 0),
+        ("mesh", |s| (s.mesh.nx, s.mesh.ny) = (2001, 2000)),
+        ("mesh", |s| (s.mesh.nx, s.mesh.ny) = (usize::MAX, 2)),
+        ("mesh.enrichment_radius", |s| s.mesh.enrichment_radius = Some(0.5)),
+        ("mesh.enrichment_radius", |s| s.mesh.enrichment_radius = Some(f64::NAN)),
+        ("material.young", |s| s.material.young = 0.0),
+        ("material.young", |s| s.material.young = -1e9),
+        ("material.young", |s| s.material.young = f64::INFINITY),
+        ("material.poisson", |s| s.material.poisson = 0.5),
+        ("material.poisson", |s| s.material.poisson = 0.7),
+        ("material.poisson", |s| s.material.poisson = -1.5),
+        ("material.poisson", |s| s.material.poisson = -1.0),
+        ("material.poisson", |s| s.material.poisson = f64::NAN),
+        ("material.poisson", |s| (s.material.plane, s.material.poisson) = (Plane::Strain, 0.5)),
+        ("material.cohesion", |s| s.material.cohesion = -1.0),
+        ("material.cohesion", |s| {
+            (s.material.cohesion, s.material.tensile_strength, s.criterion.r0) = (0.0, None, None);
+        }),
+        ("material.friction_angle_deg", |s| s.material.friction_angle_deg = -1.0),
+        ("material.friction_angle_deg", |s| s.material.friction_angle_deg = 90.0),
+        ("material.friction_angle_deg", |s| s.material.friction_angle_deg = f64::NAN),
+        ("material.k_ic", |s| s.material.k_ic = 0.0),
+        ("material.k_iic", |s| s.material.k_iic = -1.0),
+        ("material.tensile_strength", |s| s.material.tensile_strength = Some(0.0)),
+        ("material.tensile_strength", |s| s.material.tensile_strength = Some(f64::NAN)),
+        ("cracks[0]", |s| s.cracks[0].points = None),
+        ("cracks[1]", |s| s.cracks[1].points = Some(vec![[0.1, 0.1], [0.2, 0.1]])),
+        ("cracks[0].points", |s| s.cracks[0].points = Some(vec![[0.1, 0.1]])),
+        ("cracks[0].points", |s| s.cracks[0].points = Some(vec![])),
+        ("cracks[0].points", |s| s.cracks[0].points = Some(vec![[0.1, 0.1]; 3])),
+        ("cracks[0].points[2]", |s| s.cracks[0].points = Some(vec![[0.1, 0.1], [0.2, 0.2], [0.2, 0.2]])),
+        ("cracks[0].points[1]", |s| s.cracks[0].points = Some(vec![[0.1, 0.1], [0.31, 0.2]])),
+        ("cracks[0].points[0]", |s| s.cracks[0].points = Some(vec![[0.1, -0.01], [0.2, 0.2]])),
+        ("cracks[0].points[0]", |s| s.cracks[0].points = Some(vec![[f64::NAN, 0.1], [0.2, 0.2]])),
+        ("cracks[1].arc.radius", |s| arc(s).radius = 0.0),
+        ("cracks[1].arc.radius", |s| arc(s).radius = -0.1),
+        ("cracks[1].arc.center", |s| arc(s).center[1] = f64::NAN),
+        ("cracks[1].arc.start_deg", |s| arc(s).start_deg = f64::INFINITY),
+        ("cracks[1].arc.end_deg", |s| arc(s).end_deg = 0.0),
+        ("cracks[1].arc.end_deg", |s| arc(s).end_deg = 360.0),
+        ("cracks[1].arc", |s| arc(s).radius = 0.09),
+        ("cracks[0].friction", |s| s.cracks[0].friction = -0.1),
+        ("cracks[0].friction", |s| s.cracks[0].friction = f64::NAN),
+        ("cracks[1].cohesion", |s| s.cracks[1].cohesion = -1.0),
+        ("cracks[0].normal_stiffness", |s| s.cracks[0].normal_stiffness = Some(0.0)),
+        ("cracks[0].normal_stiffness", |s| s.cracks[0].normal_stiffness = Some(-2e11)),
+        ("cracks[0].shear_stiffness", |s| s.cracks[0].shear_stiffness = Some(0.0)),
+        ("cracks[0].shear_stiffness", |s| s.cracks[0].shear_stiffness = Some(f64::INFINITY)),
+        ("boundary.top.normal", |s| s.boundary.top = Traction { normal: f64::NAN, shear: 0.0 }),
+        ("boundary.right.shear", |s| s.boundary.right = Traction { normal: 0.0, shear: -f64::INFINITY }),
+        ("boundary.points[0].at", |s| s.boundary.points[0].at = [0.31, 0.1]),
+        ("boundary.points[0].at", |s| s.boundary.points[0].at = [0.1, f64::NAN]),
+        ("criterion.r0", |s| s.criterion.r0 = Some(0.0)),
+        ("criterion.r0", |s| s.criterion.r0 = Some(f64::INFINITY)),
+        ("growth.increment", |s| s.growth.increment = Some(-0.01)),
+        ("growth.load_steps", |s| s.growth.load_steps = 0),
+        ("growth.max_steps", |s| s.growth.max_steps = 0),
+        ("growth.max_growth_per_step", |s| s.growth.max_growth_per_step = 0),
+        ("growth.max_load_factor", |s| s.growth.max_load_factor = 0.0),
+        ("growth.max_load_factor", |s| s.growth.max_load_factor = f64::NAN),
+        ("solver.tolerance", |s| s.solver.tolerance = 0.0),
+        ("solver.tolerance", |s| s.solver.tolerance = 1.0),
+        ("solver.tolerance", |s| s.solver.tolerance = f64::NAN),
+        ("solver.max_iterations", |s| s.solver.max_iterations = 0),
+        ("solver.omega", |s| s.solver.omega = 0.0),
+        ("solver.omega", |s| s.solver.omega = 2.0),
+        ("solver.contact_tolerance", |s| s.solver.contact_tolerance = 0.0),
+        ("solver.max_contact_iterations", |s| s.solver.max_contact_iterations = 0),
+        ("boundary", |s| (s.boundary.left, s.boundary.points) = (SideBc::Free, vec![])),
+        ("boundary", |s| (s.boundary.left, s.boundary.bottom) = (SideBc::Free, SideBc::Free)),
+    ];
+
+    fn arc(scene: &mut Scene) -> &mut crate::scene::ArcSpec {
+        scene.cracks[1].arc.as_mut().expect("cracks[1] is an arc")
+    }
+
+    #[test]
+    fn every_invalid_case_names_its_field() {
+        assert_eq!(field_of(&full()), None);
+        for (k, (field, break_it)) in CASES.iter().enumerate() {
+            let mut scene = full();
+            break_it(&mut scene);
+            assert_eq!(field_of(&scene).as_deref(), Some(*field), "case {k}");
+        }
+    }
+
+    #[test]
+    fn the_message_names_field_and_value() {
+        let mut scene = full();
+        scene.material.poisson = 0.5;
+        let message = scene.validate().expect_err("ν = 0.5").to_string();
+        assert!(message.contains("`material.poisson` = 0.5"), "{message}");
+    }
+
+    #[test]
+    fn edges_of_the_valid_ranges_are_accepted() {
+        let mut scene = full();
+        scene.material.poisson = -0.999;
+        scene.material.friction_angle_deg = 0.0;
+        scene.material.cohesion = 0.0;
+        scene.mesh.enrichment_radius = Some(1.0);
+        (scene.mesh.nx, scene.mesh.ny) = (2000, 2000);
+        // A crack that runs along the boundary, within the tolerance.
+        scene.cracks[0].points = Some(vec![[0.0, -1e-12], [0.3, 0.0]]);
+        assert_eq!(field_of(&scene), None);
+    }
+
+    #[test]
+    fn a_full_scene_round_trips_through_json() {
+        let scene = full();
+        let text = scene.to_json().expect("a valid scene writes");
+        let again = Scene::from_json(&text).expect("to_json output parses");
+        assert_eq!(again, scene);
+        assert_eq!(again.to_json().expect("writes"), text);
+    }
+
+    #[test]
+    fn unknown_fields_are_rejected_at_every_level() {
+        let top = FULL.replacen("\"material\"", "\"materail\"", 1);
+        let nested = FULL.replacen("\"young\"", "\"yong\"", 1);
+        for (text, name) in [(top, "materail"), (nested, "yong")] {
+            match Scene::from_json(&text) {
+                Err(SceneError::Parse(m)) => assert!(m.contains(&format!("`{name}`")), "{m}"),
+                other => panic!("`{name}` accepted: {other:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn traction_on_four_sides_needs_two_point_supports() {
+        let mut scene = full();
+        let b = &mut scene.boundary;
+        (b.bottom, b.left) = (b.top, b.right);
+        b.points = vec![PointSupport {
+            at: [0.0, 0.15],
+            fix: Fix::Xy,
+        }];
+        let err = scene
+            .validate()
+            .expect_err("rotation about the point is free");
+        assert!(
+            err.to_string().contains("rotation about [0, 0.15]"),
+            "{err}"
+        );
+        // A `y` support at the same x leaves the rotation free too.
+        scene.boundary.points.push(PointSupport {
+            at: [0.0, 0.3],
+            fix: Fix::Y,
+        });
+        assert_eq!(field_of(&scene).as_deref(), Some("boundary"));
+        scene.boundary.points[1].at = [0.3, 0.15];
+        assert_eq!(field_of(&scene), None);
+    }
+}

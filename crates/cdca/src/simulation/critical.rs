@@ -1,0 +1,107 @@
+//! Critical control (SPEC §9): before each growth step, the load factor
+//! λ_cr at which the most critical free tip just meets its criterion, by
+//! the bracketing root search of [`Search`] through the contact solve;
+//! resumable, one trial solve at a time. See `search.rs` for which
+//! committed states each trial starts from.
+
+use web_time::Instant;
+
+use super::search::{CriticalRun, Next, Search, Snapshot};
+use super::state::Simulation;
+use crate::contact::law::FaceState;
+use crate::report::GrowthStepReport;
+
+impl Simulation {
+    /// Largest utilisation over the free tips of the last solve (0 with no
+    /// free tip).
+    pub(super) fn utilisation(&self) -> f64 {
+        self.scratch.utilisation.iter().copied().fold(0.0, f64::max)
+    }
+
+    /// Starts a critical-control step: the first trial at the last step's
+    /// λ_cr (warm start), or at the scene's load (λ = 1) at the first step.
+    pub(super) fn begin_critical(&mut self) {
+        let g = &self.model.scene.growth;
+        let warm = self.state.history.last().map_or(1.0, |s| s.load_factor);
+        let first = warm.min(g.max_load_factor);
+        self.scratch.critical = Some(CriticalRun {
+            search: Search::new(g.max_load_factor),
+            base_faces: vec![FaceState::default(); self.state.faces.len()],
+            best: None,
+            start: Instant::now(),
+        });
+        self.start_trial(first);
+    }
+
+    /// Sets up the trial solve at `lambda` from the committed states.
+    fn start_trial(&mut self, lambda: f64) {
+        let Some(run) = &self.scratch.critical else {
+            return;
+        };
+        self.state.faces.clone_from(&run.base_faces);
+        if self.state.lambda > 0.0 {
+            let s = lambda / self.state.lambda;
+            self.state.u.iter_mut().for_each(|v| *v *= s);
+        }
+        self.state.lambda = lambda;
+        self.state.solved = false;
+        self.scratch.job = None;
+        self.scratch.residual.clear();
+    }
+
+    /// After a trial solve (the state is solved at the trial's λ): the next
+    /// trial, or the step finished (tips extended at λ_cr and recorded).
+    pub(super) fn trial_done(&mut self) -> Option<GrowthStepReport> {
+        let mut run = self.scratch.critical.take()?;
+        let seconds = run.start.elapsed().as_secs_f64();
+        let report = self.report(seconds);
+        if !report.converged() {
+            return Some(self.finish_growth_step(&report, run.start, true));
+        }
+        let (lambda, u) = (self.state.lambda, self.utilisation());
+        if u >= 1.0 && run.best.as_ref().is_none_or(|b| lambda < b.lambda) {
+            run.best = Some(self.snapshot());
+        }
+        match run.search.record(lambda, u) {
+            Next::Trial(next) => {
+                self.scratch.critical = Some(run);
+                self.start_trial(next);
+                None
+            }
+            Next::Exceeded => Some(self.finish_growth_step(&report, run.start, true)),
+            next => {
+                if let Some(best) = run.best.take() {
+                    self.restore(best);
+                }
+                let report = self.report(seconds);
+                Some(self.finish_growth_step(&report, run.start, next != Next::Failed))
+            }
+        }
+    }
+
+    fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            lambda: self.state.lambda,
+            u: self.state.u.clone(),
+            faces: self.state.faces.clone(),
+            tips: self.scratch.tips.clone(),
+            circles: self.scratch.circles.clone(),
+            utilisation: self.scratch.utilisation.clone(),
+            contact: self.scratch.contact.clone(),
+            residual: self.scratch.residual.clone(),
+        }
+    }
+
+    fn restore(&mut self, s: Snapshot) {
+        self.state.lambda = s.lambda;
+        self.state.u = s.u;
+        self.state.faces = s.faces;
+        self.state.solved = true;
+        self.scratch.tips = s.tips;
+        self.scratch.circles = s.circles;
+        self.scratch.utilisation = s.utilisation;
+        self.scratch.contact = s.contact;
+        self.scratch.residual = s.residual;
+        self.scratch.job = None;
+    }
+}

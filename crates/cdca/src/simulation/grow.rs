@@ -1,0 +1,312 @@
+//! The growth driver (SPEC §9): load increments, solve, evaluate the free
+//! tips, extend those that meet the criterion, rebuild the discretisation
+//! locally, and record the history; resumable for the workbench.
+
+use web_time::Instant;
+
+use super::state::Simulation;
+use crate::contact::law::{carry_over, counts};
+use crate::discretisation::dofs::FIXED;
+use crate::discretisation::xfem::Reuse;
+use crate::error::SolveError;
+use crate::fracture::growth::{apply, default_increment, extend};
+use crate::geometry::cracks::{TipKind, classify_tips};
+use crate::geometry::plane::P2;
+use crate::report::{
+    ContactCounts, GrownTip, GrowthStepReport, Mode, Outcome, SolveReport, TipReport,
+};
+use crate::scene::{CrackSpec, GrowthControl};
+
+impl Simulation {
+    /// One growth step of SPEC §9: solve at the current load increment,
+    /// evaluate every free tip, extend those that meet the criterion by Δa
+    /// (or, if none does, advance the load factor).
+    pub fn grow_step(&mut self) -> Result<GrowthStepReport, SolveError> {
+        if self.state.outcome.is_some() {
+            return Ok(self.state.history.last().cloned().unwrap_or_default());
+        }
+        if self.critical_control() {
+            if self.scratch.critical.is_none() {
+                self.begin_critical();
+            }
+            loop {
+                self.solve()?;
+                if let Some(step) = self.trial_done() {
+                    return Ok(step);
+                }
+            }
+        }
+        let start = Instant::now();
+        let lambda = self.increment_load_factor();
+        // a state already solved at this load (e.g. the re-solve after the
+        // last growth) is not solved again
+        let report =
+            if self.state.solved && self.scratch.job.is_none() && lambda == self.state.lambda {
+                self.report(0.0)
+            } else {
+                self.state.lambda = lambda;
+                self.solve()?
+            };
+        Ok(self.finish_growth_step(&report, start, true))
+    }
+
+    /// Whether the scene asks for critical control (SPEC §9).
+    fn critical_control(&self) -> bool {
+        self.model.scene.growth.control == GrowthControl::Critical
+    }
+
+    /// Load factor of the growth loop's current increment.
+    fn increment_load_factor(&self) -> f64 {
+        self.state.increment as f64 / self.model.scene.growth.load_steps as f64
+    }
+
+    /// The same step as [`grow_step`](Self::grow_step), resumable: each call
+    /// runs at most `max_iterations` sweeps of the step's solve (see
+    /// [`relax`](Self::relax)) and returns `None` until the solve has
+    /// finished (the state is then solved and can be shown); the call after
+    /// that evaluates the tips, extends them, rebuilds the discretisation
+    /// and returns the step's report.
+    /// This is how the workbench grows cracks without freezing a frame.
+    pub fn advance_growth(
+        &mut self,
+        max_iterations: usize,
+    ) -> Result<Option<GrowthStepReport>, SolveError> {
+        if self.state.outcome.is_some() {
+            return Ok(self.state.history.last().cloned());
+        }
+        if self.critical_control() {
+            if self.scratch.critical.is_none() {
+                self.begin_critical();
+            }
+            if !(self.state.solved && self.scratch.job.is_none()) {
+                self.relax(max_iterations)?;
+                return Ok(None);
+            }
+            return Ok(self.trial_done());
+        }
+        let start = if let Some(t) = self.scratch.growth_start {
+            t
+        } else {
+            let lambda = self.increment_load_factor();
+            if lambda != self.state.lambda || !self.state.solved {
+                self.set_load_factor(lambda);
+                self.start_relaxation();
+            }
+            let t = Instant::now();
+            self.scratch.growth_start = Some(t);
+            t
+        };
+        if !(self.state.solved && self.scratch.job.is_none()) {
+            // the call that converges returns the solved state to the
+            // caller (to show it); the next one decides and extends
+            self.relax(max_iterations)?;
+            return Ok(None);
+        }
+        self.scratch.growth_start = None;
+        let report = self.report(start.elapsed().as_secs_f64());
+        Ok(Some(self.finish_growth_step(&report, start, true)))
+    }
+
+    /// After the step's solve: decide, extend the growing tips (or advance
+    /// the load), and record the step. A solve that did not converge (or,
+    /// `search_closed` false, a λ_cr search that did not close its bracket)
+    /// is recorded with `converged: false` and ends the growth with
+    /// [`Outcome::NotConverged`]: no tip is extended from an untrusted state
+    /// (raise `solver.max_iterations` or `solver.max_contact_iterations`).
+    ///
+    /// Under critical control the solve is the one at λ_cr; a step where no
+    /// tip grows is the search reaching `growth.max_load_factor`
+    /// ([`Outcome::Completed`]), and growth ends `through` as soon as no
+    /// free tip is left.
+    pub(super) fn finish_growth_step(
+        &mut self,
+        report: &SolveReport,
+        start: Instant,
+        search_closed: bool,
+    ) -> GrowthStepReport {
+        let critical = self.critical_control();
+        let g = &self.model.scene.growth;
+        let (load_steps, max_here, max_steps) = (g.load_steps, g.max_growth_per_step, g.max_steps);
+        let da = self
+            .model
+            .scene
+            .growth
+            .increment
+            .unwrap_or(default_increment(
+                self.criterion_params().r0,
+                self.model.mesh.h(),
+            ));
+        let growing: Vec<TipReport> = report
+            .tips
+            .iter()
+            .filter(|t| t.criterion.mode != Mode::None)
+            .cloned()
+            .collect();
+        let mut step = GrowthStepReport {
+            step: self.state.history.len() + 1,
+            load_factor: self.state.lambda,
+            grown: Vec::new(),
+            contact: ContactCounts {
+                converged: report.contact.converged,
+                iterations: report.contact.iterations,
+                residual: report.contact.residual,
+                cycling: report.contact.cycling,
+                violating: report.contact.violating,
+                ..counts(&self.state.faces)
+            },
+            converged: report.converged() && search_closed,
+            solver_iterations: report.solver.iterations,
+            seconds: 0.0,
+            tips: report.tips.clone(),
+        };
+        if !step.converged {
+            self.state.outcome = Some(Outcome::NotConverged);
+        } else if critical {
+            if growing.is_empty() {
+                self.state.outcome = Some(Outcome::Completed);
+            } else {
+                step.grown = self.grow_tips(&growing, da);
+            }
+        } else if growing.is_empty() {
+            self.state.increment += 1;
+            self.state.growths_here = 0;
+            if self.state.increment > load_steps {
+                self.state.outcome = Some(Outcome::Completed);
+            }
+        } else {
+            self.state.growths_here += 1;
+            step.grown = self.grow_tips(&growing, da);
+            if self.state.growths_here >= max_here {
+                self.state.outcome = Some(Outcome::Unstable);
+            }
+        }
+        if self.state.outcome.is_none()
+            && self.state.cracks.iter().all(|c| c.free_tips().count() == 0)
+        {
+            let any_boundary = self
+                .state
+                .cracks
+                .iter()
+                .any(|c| c.tips.contains(&TipKind::Boundary));
+            if !self.state.cracks.is_empty() && (any_boundary || critical) {
+                self.state.outcome = Some(Outcome::Through);
+            }
+        }
+        if self.state.outcome.is_none() && step.step >= max_steps {
+            self.state.outcome = Some(Outcome::MaxSteps);
+        }
+        step.seconds = start.elapsed().as_secs_f64();
+        self.state.history.push(step.clone());
+        step
+    }
+
+    /// Extends the growing tips (all from the same solution) and rebuilds
+    /// the discretisation, carrying contact states and displacement over.
+    fn grow_tips(&mut self, growing: &[TipReport], da: f64) -> Vec<GrownTip> {
+        let m = &self.model.mesh;
+        let snap = 0.5 * m.h();
+        let mut ext = Vec::new();
+        for t in growing {
+            let e = extend(
+                &self.state.cracks,
+                t.crack,
+                t.tip,
+                t.criterion.angle_deg.to_radians(),
+                da,
+                m.width,
+                m.height,
+                snap,
+            );
+            ext.push((t, e));
+        }
+        let mut grown = Vec::new();
+        let mut moved = Vec::new();
+        for (t, e) in ext {
+            let p = e.point();
+            moved.push(self.state.cracks[t.crack].tip_point(t.tip));
+            moved.push(p);
+            if (p - self.state.cracks[t.crack].tip_point(t.tip)).norm() > 1e-6 * m.h() {
+                apply(&mut self.state.cracks[t.crack], t.tip, p);
+            }
+            grown.push(GrownTip {
+                crack: t.crack,
+                tip: t.tip,
+                x: p.x,
+                y: p.y,
+                mode: t.criterion.mode,
+                angle_deg: t.criterion.angle_deg,
+                k1: t.k1,
+                k2: t.k2,
+            });
+        }
+        classify_tips(&mut self.state.cracks, m.width, m.height, 1e-9 * m.h());
+        self.rebuild(moved);
+        grown
+    }
+
+    /// New discretisation for the current cracks (reusing element data away
+    /// from the `moved` tips); states and displacement carried over.
+    fn rebuild(&mut self, moved: Vec<P2>) {
+        let reuse = Reuse {
+            previous: &self.scratch.xfem,
+            moved,
+        };
+        let new = self
+            .model
+            .rediscretise(self.state.cracks.clone(), Some(&reuse));
+        let faces = carry_over(
+            &self.scratch.xfem.faces,
+            &self.state.faces,
+            &new.faces,
+            self.model.mesh.h(),
+        );
+        let mut u = vec![0.0; new.n_free()];
+        let old = &self.scratch.xfem.dofs;
+        for n in 0..self.model.mesh.node_count() {
+            for c in 0..2 {
+                let (a, b) = (old.std_free(n, c), new.dofs.std_free(n, c));
+                if a != FIXED && b != FIXED {
+                    u[b as usize] = self.state.u[a as usize];
+                }
+            }
+        }
+        self.scratch.f_ext =
+            crate::discretisation::loads::traction_forces(&new, &self.model.scene.boundary);
+        self.scratch.xfem = new;
+        self.scratch.job = None;
+        self.scratch.solver = crate::solvers::choice::make_solver(&self.model.scene.solver);
+        self.state.faces = faces;
+        self.state.u = u;
+        self.state.solved = false;
+        self.state.scene.cracks = self
+            .state
+            .cracks
+            .iter()
+            .zip(&self.model.scene.cracks)
+            .map(|(c, spec)| CrackSpec {
+                points: Some(c.points.iter().map(|p| [p.x, p.y]).collect()),
+                arc: None,
+                ..spec.clone()
+            })
+            .collect();
+    }
+
+    /// Growth history so far.
+    pub fn history(&self) -> &[GrowthStepReport] {
+        &self.state.history
+    }
+
+    /// Whether growth has ended (through, unstable, max steps, completed).
+    pub fn growth_finished(&self) -> Option<Outcome> {
+        self.state.outcome
+    }
+
+    /// Current crack polylines, m.
+    pub fn cracks(&self) -> Vec<Vec<[f64; 2]>> {
+        self.state
+            .cracks
+            .iter()
+            .map(|c| c.points.iter().map(|p| [p.x, p.y]).collect())
+            .collect()
+    }
+}

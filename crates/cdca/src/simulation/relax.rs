@@ -1,0 +1,241 @@
+//! The relaxation driver: a resumable solve with contact that runs a few
+//! sweeps per call, so that the workbench can animate the automaton and the
+//! contact states settling without freezing a frame.
+
+use super::job::RelaxJob;
+use super::state::Simulation;
+use crate::contact::iteration::{
+    ContactInfo, FlipTracker, relative_change, settled, update_states,
+};
+use crate::contact::law::{FaceState, contact_system};
+use crate::error::SolveError;
+use crate::solvers::linear::LinearInfo;
+use crate::solvers::relaxation::{RelaxStatus, Relaxation, ResidualSample};
+
+/// Relative residual below which the automaton updates contact states
+/// inside its sweeps.
+pub const IN_SWEEP_CONTACT_RESIDUAL: f64 = 1e-3;
+
+impl Simulation {
+    /// Starts (or restarts) a resumable solve from the current displacement
+    /// with the scene's solver. The setup (cells, factorisations) happens at
+    /// the first [`relax`](Self::relax) call, which reports its errors.
+    pub fn start_relaxation(&mut self) {
+        self.scratch.residual.clear();
+        self.scratch.job = None;
+    }
+
+    fn new_job(
+        &self,
+        states: Vec<FaceState>,
+        tracker: FlipTracker,
+        contact_iterations: usize,
+        done_iterations: usize,
+        done_seconds: f64,
+    ) -> Result<RelaxJob, SolveError> {
+        let x = &self.scratch.xfem;
+        let mut f: Vec<f64> = self
+            .scratch
+            .f_ext
+            .iter()
+            .map(|v| v * self.state.lambda)
+            .collect();
+        let blocks = contact_system(x, &states, &self.state.faces, &mut f);
+        let spec = &self.model.scene.solver;
+        let relaxation = Relaxation::new(spec.kind, spec, x, &blocks, &f, &self.state.u)?;
+        Ok(RelaxJob {
+            relaxation,
+            blocks,
+            states,
+            tracker,
+            contact_iterations,
+            done_iterations,
+            done_seconds,
+            start_u: self.state.u.clone(),
+            // later contact iterations do not repeat the iteration-0 sample
+            copied: usize::from(done_iterations > 0),
+        })
+    }
+
+    /// Runs at most `max_iterations` sweeps (or iterations) of the solve
+    /// started by [`start_relaxation`](Self::start_relaxation) (started now
+    /// if none is under way); cheap enough to call once per frame. When the
+    /// linear solve converges, the contact states are updated and, if any
+    /// changed, the relaxation continues on the new contact system.
+    ///
+    /// The solve ends (`finished`) when the contact states settle, or at a
+    /// cap: `solver.max_iterations` sweeps in one contact iteration, or
+    /// `solver.max_contact_iterations` contact iterations. `converged` is
+    /// true only when it ended with every test passed; a capped solve ends
+    /// with `converged: false`, its state is shown but growth does not go on
+    /// from it. The tips are evaluated either way.
+    pub fn relax(&mut self, max_iterations: usize) -> Result<RelaxStatus, SolveError> {
+        if self.scratch.job.is_none() {
+            self.scratch.residual.clear();
+            let fresh = FlipTracker::new(self.state.faces.len());
+            self.scratch.job = Some(self.new_job(self.state.faces.clone(), fresh, 0, 0, 0.0)?);
+        }
+        let Some(mut job) = self.scratch.job.take() else {
+            unreachable!("a job was just started")
+        };
+        let cap = self.model.scene.solver.max_iterations.max(1);
+        let left = cap
+            .saturating_sub(job.relaxation.status().iterations)
+            .max(1);
+        let status = job.relaxation.run(
+            &self.scratch.xfem,
+            &job.blocks,
+            max_iterations.min(left),
+            &mut |_| {},
+        )?;
+        self.copy_history(&mut job);
+        self.state.u.copy_from_slice(job.relaxation.u());
+        let iterations = job.done_iterations + status.iterations;
+        if !status.converged {
+            if status.iterations >= cap {
+                // the linear solve hit its cap: end, unconverged
+                let du = relative_change(&self.state.u, &job.start_u);
+                return Ok(self.finish(job, status, false, du, 0));
+            }
+            let job = self.contact_inside_sweeps(job, status, iterations)?;
+            self.scratch.job = Some(job);
+            return Ok(RelaxStatus {
+                iterations,
+                ..status
+            });
+        }
+        // the linear solve converged: the contact iteration
+        let params = self.contact_params();
+        let committed = self.state.faces.clone();
+        let update = update_states(
+            &self.scratch.xfem,
+            &self.state.u,
+            &committed,
+            &mut job.states,
+            &mut job.tracker,
+            params,
+        );
+        let du = relative_change(&self.state.u, &job.start_u);
+        job.contact_iterations += 1;
+        if settled(&update, &job.states, du, params) {
+            return Ok(self.finish(job, status, update.violating == 0, du, update.violating));
+        }
+        if job.contact_iterations >= params.max_contact_iterations() {
+            return Ok(self.finish(job, status, false, du, update.violating));
+        }
+        let seconds = job.done_seconds + job.relaxation.seconds();
+        let next = self.new_job(
+            job.states,
+            job.tracker,
+            job.contact_iterations,
+            iterations,
+            seconds,
+        )?;
+        self.scratch.job = Some(next);
+        Ok(RelaxStatus {
+            iterations,
+            residual: status.residual,
+            converged: false,
+            finished: false,
+        })
+    }
+
+    /// Appends the samples of the job's relaxation not yet copied to the
+    /// cumulative residual history.
+    fn copy_history(&mut self, job: &mut RelaxJob) {
+        let (iterations, seconds) = (job.done_iterations, job.done_seconds);
+        let history = job.relaxation.history();
+        self.scratch
+            .residual
+            .extend(
+                history[job.copied.min(history.len())..]
+                    .iter()
+                    .map(|s| ResidualSample {
+                        iteration: s.iteration + iterations,
+                        seconds: s.seconds + seconds,
+                        residual: s.residual,
+                    }),
+            );
+        job.copied = history.len();
+    }
+
+    /// Ends the solve: commits the contact states, records how the contact
+    /// iteration ended, evaluates the tips.
+    fn finish(
+        &mut self,
+        job: RelaxJob,
+        status: RelaxStatus,
+        converged: bool,
+        du: f64,
+        violating: usize,
+    ) -> RelaxStatus {
+        let iterations = job.done_iterations + status.iterations;
+        self.state.faces = job.states;
+        self.scratch.contact = ContactInfo {
+            iterations: job.contact_iterations.max(1),
+            converged: converged && status.converged,
+            residual: du,
+            cycling: job.tracker.frozen(),
+            violating,
+            linear_iterations: iterations,
+            last: LinearInfo {
+                iterations: status.iterations,
+                residual: status.residual,
+                converged: status.converged,
+                history: job
+                    .relaxation
+                    .history()
+                    .iter()
+                    .map(|s| s.residual)
+                    .collect(),
+            },
+        };
+        self.state.solved = true;
+        self.evaluate();
+        RelaxStatus {
+            iterations,
+            residual: status.residual,
+            converged: self.scratch.contact.converged,
+            finished: true,
+        }
+    }
+
+    /// The paper's automaton updates the contact states inside its sweeps
+    /// (steps 1–9): once the iterate means something (relative residual
+    /// below [`IN_SWEEP_CONTACT_RESIDUAL`]), every chunk of sweeps
+    /// re-evaluates the face states by the return mapping and, if any
+    /// changed, continues on the new contact system from the current
+    /// displacement. Points that keep flipping are frozen as in the outer
+    /// loop. Other solvers keep the outer contact iteration.
+    fn contact_inside_sweeps(
+        &self,
+        job: RelaxJob,
+        status: RelaxStatus,
+        total: usize,
+    ) -> Result<RelaxJob, SolveError> {
+        let automaton = self.model.scene.solver.kind == crate::scene::SolverKind::Automaton;
+        if !automaton || job.states.is_empty() || status.residual > IN_SWEEP_CONTACT_RESIDUAL {
+            return Ok(job);
+        }
+        let mut states = job.states.clone();
+        let mut tracker = job.tracker.clone();
+        let update = update_states(
+            &self.scratch.xfem,
+            &self.state.u,
+            &self.state.faces,
+            &mut states,
+            &mut tracker,
+            self.contact_params(),
+        );
+        if update.changed == 0 {
+            return Ok(job);
+        }
+        let seconds = job.done_seconds + job.relaxation.seconds();
+        self.new_job(states, tracker, job.contact_iterations + 1, total, seconds)
+    }
+
+    /// Residual samples of the current relaxation.
+    pub fn residual_history(&self) -> &[ResidualSample] {
+        &self.scratch.residual
+    }
+}

@@ -1,0 +1,219 @@
+//! The data of critical control (SPEC §9): the bracketing search for λ_cr
+//! and the step in progress (the driver is in `critical.rs`).
+//!
+//! Path dependence: every trial solve starts from open faces with no slip
+//! history: proportional loading from zero to λ on the current cracks, in
+//! one increment. The utilisation `U(λ)` (the largest over the free tips,
+//! see [`assess`](crate::fracture::criterion::assess)) is then a function
+//! of λ alone, whatever order the search visits it in. Carrying the slip of
+//! the last accepted step instead (measured) made every λ_cr below the last
+//! one an unloading path on which the stick/slip iteration did not settle
+//! (the default specimen stopped `not_converged` at its second step); under
+//! a monotonic proportional load the two agree. Only the displacement is
+//! carried from trial to trial (scaled by the load ratio), as the iterative
+//! solvers' initial guess.
+
+use web_time::Instant;
+
+use crate::contact::iteration::ContactInfo;
+use crate::contact::law::FaceState;
+use crate::fracture::criterion::Circle;
+use crate::report::TipReport;
+use crate::solvers::relaxation::ResidualSample;
+
+/// Relative width of the search's final bracket: λ_cr is the lowest trial
+/// load at which a tip meets its criterion, and a trial at
+/// `λ ≥ (1 − LAMBDA_TOLERANCE) λ_cr` showed none meeting it.
+pub const LAMBDA_TOLERANCE: f64 = 1e-3;
+
+/// Trial solves per step before the search gives up (the step is then
+/// recorded unconverged).
+pub const MAX_TRIALS: usize = 60;
+
+/// Largest factor by which one trial raises λ while no tip meets its
+/// criterion.
+const MAX_RAISE: f64 = 10.0;
+
+/// Where the search goes after a trial.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Next {
+    /// Solve at this λ next.
+    Trial(f64),
+    /// λ_cr (the bracket's upper end) found.
+    Found(f64),
+    /// No tip meets its criterion at the largest load factor allowed.
+    Exceeded,
+    /// [`MAX_TRIALS`] trials without closing the bracket.
+    Failed,
+}
+
+/// The bracketing search for `U(λ) = 1`: regula falsi with the Illinois
+/// modification on a bracket `[lo, hi]`, `U(lo) < 1 ≤ U(hi)`, started at
+/// `lo = 0` (no load, `U = 0`). Until a trial meets the criterion, each
+/// next trial scales λ by `1/U` (exact for a linear response) up to
+/// [`MAX_RAISE`]. Each interpolated trial is nudged by half the tolerance
+/// towards the end that did not move last, so that near the root the
+/// trials land on both sides and the bracket closes in a few solves.
+#[derive(Clone, Debug)]
+pub(super) struct Search {
+    /// (λ, U) with U < 1.
+    lo: (f64, f64),
+    /// (λ, U) with U ≥ 1.
+    hi: Option<(f64, f64)>,
+    /// The end moved by the last trial (true: hi), and how many times in a
+    /// row.
+    last: Option<(bool, u32)>,
+    trials: usize,
+    max: f64,
+}
+
+impl Search {
+    pub(super) fn new(max_load_factor: f64) -> Self {
+        Self {
+            lo: (0.0, 0.0),
+            hi: None,
+            last: None,
+            trials: 0,
+            max: max_load_factor,
+        }
+    }
+
+    /// Records the utilisation `u` of the trial at `lambda` and says what
+    /// comes next.
+    pub(super) fn record(&mut self, lambda: f64, u: f64) -> Next {
+        self.trials += 1;
+        let side = u >= 1.0;
+        if side {
+            if self.hi.is_none_or(|h| lambda < h.0) {
+                self.hi = Some((lambda, u));
+            }
+        } else if lambda > self.lo.0 {
+            self.lo = (lambda, u);
+        }
+        self.last = Some(match self.last {
+            Some((s, n)) if s == side => (s, n + 1),
+            _ => (side, 1),
+        });
+        let Some(hi) = self.hi else {
+            if lambda >= self.max {
+                return Next::Exceeded;
+            }
+            let raise = if u > 0.0 {
+                (1.0 + 0.5 * LAMBDA_TOLERANCE) / u
+            } else {
+                MAX_RAISE
+            };
+            let next = lambda * raise.clamp(1.0 + LAMBDA_TOLERANCE, MAX_RAISE);
+            return Next::Trial(next.min(self.max));
+        };
+        let w = LAMBDA_TOLERANCE * hi.0;
+        if hi.0 - self.lo.0 <= w {
+            return Next::Found(hi.0);
+        }
+        if self.trials >= MAX_TRIALS {
+            return Next::Failed;
+        }
+        // Illinois: the end that stayed put twice or more counts half as much
+        let (moved_hi, n) = self.last.unwrap_or((true, 1));
+        let damp = 0.5_f64.powi(n.saturating_sub(1).min(30) as i32);
+        let (mut fl, mut fh) = (self.lo.1 - 1.0, hi.1 - 1.0);
+        if moved_hi {
+            fl *= damp;
+        } else {
+            fh *= damp;
+        }
+        let mut next = if fh.is_finite() && fh - fl > 0.0 {
+            self.lo.0 + (hi.0 - self.lo.0) * (-fl) / (fh - fl)
+        } else {
+            0.5 * (self.lo.0 + hi.0)
+        };
+        next += if moved_hi { -0.5 * w } else { 0.5 * w };
+        let next = next.clamp(self.lo.0 + 0.25 * w, hi.0 - 0.25 * w);
+        Next::Trial(next)
+    }
+}
+
+/// The solved state of one trial, kept while it is the bracket's upper end.
+pub(super) struct Snapshot {
+    pub(super) lambda: f64,
+    pub(super) u: Vec<f64>,
+    pub(super) faces: Vec<FaceState>,
+    pub(super) tips: Vec<TipReport>,
+    pub(super) circles: Vec<Circle>,
+    pub(super) utilisation: Vec<f64>,
+    pub(super) contact: ContactInfo,
+    pub(super) residual: Vec<ResidualSample>,
+}
+
+/// A critical-control step in progress.
+pub(super) struct CriticalRun {
+    pub(super) search: Search,
+    /// Committed contact states every trial starts from.
+    pub(super) base_faces: Vec<FaceState>,
+    /// The lowest trial so far that meets the criterion.
+    pub(super) best: Option<Snapshot>,
+    pub(super) start: Instant,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Runs the search on a known `U(λ)` and returns (λ_cr or None, trials).
+    fn find(u: impl Fn(f64) -> f64, first: f64, max: f64) -> (Option<f64>, usize) {
+        let mut s = Search::new(max);
+        let mut lambda = first;
+        for k in 1..=MAX_TRIALS + 1 {
+            match s.record(lambda, u(lambda)) {
+                Next::Trial(l) => lambda = l,
+                Next::Found(l) => return (Some(l), k),
+                Next::Exceeded | Next::Failed => return (None, k),
+            }
+        }
+        unreachable!("the search ends within MAX_TRIALS")
+    }
+
+    /// A linear response `U = λ/2.37` is found in 3 trials from λ = 1, and
+    /// λ_cr is within the tolerance above the root.
+    #[test]
+    fn linear_root_in_three_trials() {
+        let root = 2.37;
+        let (l, n) = find(|l| l / root, 1.0, 100.0);
+        let l = l.expect("found");
+        assert!(l >= root && l <= root * (1.0 + LAMBDA_TOLERANCE), "{l}");
+        assert!(n <= 3, "{n} trials");
+    }
+
+    /// Nonlinear responses (a threshold then a steep rise; a square root;
+    /// a step) are bracketed to the tolerance from warm starts on either
+    /// side; a response that stays below 1 up to the cap is `Exceeded`.
+    #[test]
+    fn nonlinear_roots_are_bracketed() {
+        let cases: [(&dyn Fn(f64) -> f64, f64); 3] = [
+            (
+                &|l: f64| {
+                    if l < 3.0 {
+                        0.1 * l
+                    } else {
+                        0.2 + 5.0 * (l - 3.0)
+                    }
+                },
+                3.16,
+            ),
+            (&|l: f64| (l / 7.0).sqrt(), 7.0),
+            (&|l: f64| if l < 0.42 { 0.2 } else { 1.5 }, 0.42),
+        ];
+        for (u, root) in cases {
+            for first in [0.01, 1.0, 50.0] {
+                let (l, n) = find(u, first, 100.0);
+                let l = l.expect("found");
+                assert!(
+                    l >= root && l <= root / (1.0 - LAMBDA_TOLERANCE),
+                    "root {root} from {first}: {l} after {n} trials"
+                );
+                assert!(n < 40, "root {root} from {first}: {n} trials");
+            }
+        }
+        assert_eq!(find(|l| l / 200.0, 1.0, 100.0).0, None);
+    }
+}

@@ -1,0 +1,155 @@
+//! The simulation's data: the model (immutable), the state (what a saved
+//! session would need to resume) and the scratch (derived, never
+//! serialised), and the settings read from the scene.
+
+use web_time::Instant;
+
+use super::job::RelaxJob;
+use super::search::CriticalRun;
+use crate::contact::iteration::{ContactInfo, ContactParams};
+use crate::contact::law::FaceState;
+use crate::discretisation::model::Model;
+use crate::discretisation::xfem::Xfem;
+use crate::error::SolveError;
+use crate::fracture::criterion::{Circle, CriterionParams};
+use crate::geometry::cracks::Crack;
+use crate::report::{GrowthStepReport, Outcome, TipReport};
+use crate::scene::Scene;
+use crate::solvers::linear::LinearSolver;
+use crate::solvers::relaxation::ResidualSample;
+
+/// One scene being simulated: the model (immutable), the state (cracks,
+/// load factor, displacement, committed contact states, history) and the
+/// scratch (discretisation, solver and its factorisation, tip results).
+pub struct Simulation {
+    pub(super) model: Model,
+    pub(super) state: State,
+    pub(super) scratch: Scratch,
+}
+
+/// What a saved session would need to resume.
+pub(super) struct State {
+    /// The scene with the current (grown) cracks.
+    pub(super) scene: Scene,
+    pub(super) cracks: Vec<Crack>,
+    pub(super) lambda: f64,
+    /// Free-DOF displacement of the current discretisation.
+    pub(super) u: Vec<f64>,
+    /// Contact states of the last converged solve.
+    pub(super) faces: Vec<FaceState>,
+    pub(super) solved: bool,
+    pub(super) history: Vec<GrowthStepReport>,
+    pub(super) outcome: Option<Outcome>,
+    /// Load increment (1-based) the growth loop is at, and growths there.
+    pub(super) increment: usize,
+    pub(super) growths_here: usize,
+}
+
+/// Derived data, rebuilt from model and state; never serialised.
+pub(super) struct Scratch {
+    pub(super) xfem: Xfem,
+    pub(super) f_ext: Vec<f64>,
+    pub(super) solver: Box<dyn LinearSolver>,
+    pub(super) tips: Vec<TipReport>,
+    pub(super) circles: Vec<Circle>,
+    pub(super) contact: ContactInfo,
+    pub(super) residual: Vec<ResidualSample>,
+    /// The resumable solve in progress, if any.
+    pub(super) job: Option<RelaxJob>,
+    /// Start of a resumable growth step in progress.
+    pub(super) growth_start: Option<Instant>,
+    /// Each free tip's utilisation after the last solve (≥ 1: it grows).
+    pub(super) utilisation: Vec<f64>,
+    /// The critical-control step in progress, if any.
+    pub(super) critical: Option<CriticalRun>,
+}
+
+impl Simulation {
+    /// Validates the scene and builds the discretisation (no solve yet).
+    pub fn new(scene: Scene) -> Result<Self, SolveError> {
+        scene.validate()?;
+        let model = Model::new(scene.clone());
+        let cracks = model.initial_cracks();
+        let xfem = model.discretise(cracks.clone());
+        let f_ext = crate::discretisation::loads::traction_forces(&xfem, &scene.boundary);
+        let n = xfem.n_free();
+        let nf = xfem.faces.len();
+        Ok(Self {
+            scratch: Scratch {
+                xfem,
+                f_ext,
+                solver: crate::solvers::choice::make_solver(&scene.solver),
+                tips: Vec::new(),
+                circles: Vec::new(),
+                contact: ContactInfo::default(),
+                residual: Vec::new(),
+                job: None,
+                growth_start: None,
+                utilisation: Vec::new(),
+                critical: None,
+            },
+            state: State {
+                scene,
+                cracks,
+                lambda: 1.0,
+                u: vec![0.0; n],
+                faces: vec![FaceState::default(); nf],
+                solved: false,
+                history: Vec::new(),
+                outcome: None,
+                increment: 1,
+                growths_here: 0,
+            },
+            model,
+        })
+    }
+
+    /// The scene as currently simulated (cracks include grown segments).
+    pub fn scene(&self) -> &Scene {
+        &self.state.scene
+    }
+
+    /// The discretisation (for exports and diagnostics).
+    pub fn xfem(&self) -> &Xfem {
+        &self.scratch.xfem
+    }
+
+    /// Free-DOF displacement of the last solve.
+    pub fn displacement(&self) -> &[f64] {
+        &self.state.u
+    }
+
+    /// Load factor λ applied to every load: in [0, 1] under load control
+    /// and as set by [`set_load_factor`](Self::set_load_factor); λ_cr of
+    /// the current step under critical control.
+    pub fn load_factor(&self) -> f64 {
+        self.state.lambda
+    }
+
+    pub fn set_load_factor(&mut self, lambda: f64) {
+        if lambda.is_finite() {
+            self.state.lambda = lambda.clamp(0.0, 1.0);
+            self.state.solved = false;
+            self.scratch.job = None;
+            self.scratch.critical = None;
+        }
+    }
+
+    pub(super) fn contact_params(&self) -> ContactParams {
+        let s = &self.model.scene.solver;
+        ContactParams {
+            tolerance: s.contact_tolerance,
+            max_iterations: s.max_contact_iterations,
+            ..ContactParams::default()
+        }
+    }
+
+    pub(super) fn criterion_params(&self) -> CriterionParams {
+        CriterionParams::of_scene(&self.model.scene)
+    }
+
+    /// Whether the displacement belongs to the current cracks and load.
+    pub fn is_solved(&self) -> bool {
+        self.state.solved
+    }
+}

@@ -1,0 +1,302 @@
+//! Parameter studies (the *Study* tab): one scene parameter swept over a
+//! list of values; for each value a simulation of the modified scene grows
+//! until its first step that extends a tip, and the kink angle, mode, load
+//! factor and SIFs of that step are recorded. One resumable simulation at a
+//! time, advanced inside the frame budget.
+
+use std::fmt::Write as _;
+
+use cdca::report::{GrownTip, Mode, Outcome};
+use cdca::{Scene, Simulation};
+use web_time::Instant;
+
+use crate::runner::growth_solver;
+
+/// Parameters offered in the Study tab (any numeric scene path works).
+pub const SUGGESTED_PATHS: [&str; 6] = [
+    "cracks.0.friction",
+    "cracks.0.cohesion",
+    "boundary.right.normal",
+    "boundary.top.normal",
+    "criterion.r0",
+    "material.poisson",
+];
+
+/// The unit a parameter is shown in, and the factor from SI to it, from the
+/// last segment of its path.
+pub fn param_unit(path: &str) -> (&'static str, f64) {
+    let last = path.rsplit('.').next().unwrap_or(path);
+    match last {
+        "normal" | "shear" | "cohesion" | "young" | "sigma_t" | "kn" | "kt" => ("MPa", 1e-6),
+        "k_ic" | "k_iic" => ("MPa·√m", 1e-6),
+        "r0" | "width" | "height" | "thickness" | "increment" => ("mm", 1e3),
+        "friction_angle_deg" => ("°", 1.0),
+        _ => ("–", 1.0),
+    }
+}
+
+/// What the Study tab is set to run (edited in place by the panel; values
+/// in the parameter's display unit).
+#[derive(Clone, Debug, PartialEq)]
+pub struct StudySetup {
+    pub path: String,
+    pub from: f64,
+    pub to: f64,
+    /// Number of values, evenly spaced from `from` to `to`.
+    pub count: usize,
+}
+
+impl Default for StudySetup {
+    fn default() -> Self {
+        Self {
+            path: SUGGESTED_PATHS[0].to_owned(),
+            from: 0.0,
+            to: 0.8,
+            count: 9,
+        }
+    }
+}
+
+impl StudySetup {
+    /// The values in SI units.
+    pub fn values(&self) -> Vec<f64> {
+        let (_, factor) = param_unit(&self.path);
+        let n = self.count.max(1);
+        (0..n)
+            .map(|i| {
+                let t = if n == 1 {
+                    0.0
+                } else {
+                    i as f64 / (n - 1) as f64
+                };
+                (self.from + t * (self.to - self.from)) / factor
+            })
+            .collect()
+    }
+}
+
+/// The first growing step of one value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StudyPoint {
+    /// The parameter's value, SI.
+    pub value: f64,
+    /// Load factor of the first step that grew a tip.
+    pub load_factor: Option<f64>,
+    /// The tips that grew in that step (empty: none grew).
+    pub grown: Vec<GrownTip>,
+    /// How growth ended if no tip grew.
+    pub outcome: Option<Outcome>,
+    /// Growth steps run.
+    pub steps: usize,
+    /// Why this value could not be simulated.
+    pub error: Option<String>,
+}
+
+/// A running or finished parameter study.
+pub struct Study {
+    pub path: String,
+    pub values: Vec<f64>,
+    base: Scene,
+    accelerate: bool,
+    sim: Option<Simulation>,
+    /// Sweeps per `advance_growth` call, adapted to the budget.
+    sweeps_per_call: usize,
+    pub points: Vec<StudyPoint>,
+    cancelled: bool,
+}
+
+impl Study {
+    /// A study of `path` over `values` (SI) on `base`; `accelerate` as in
+    /// growth. The path is checked on the first value.
+    pub fn new(
+        base: &Scene,
+        path: &str,
+        values: Vec<f64>,
+        accelerate: bool,
+    ) -> Result<Self, String> {
+        let first = values.first().ok_or("the study needs at least one value")?;
+        base.with_param(path, *first).map_err(|e| e.to_string())?;
+        Ok(Self {
+            path: path.to_owned(),
+            values,
+            base: base.clone(),
+            accelerate,
+            sim: None,
+            sweeps_per_call: 1,
+            points: Vec::new(),
+            cancelled: false,
+        })
+    }
+
+    pub fn finished(&self) -> bool {
+        self.cancelled || self.points.len() >= self.values.len()
+    }
+
+    pub fn cancelled(&self) -> bool {
+        self.cancelled
+    }
+
+    /// Stops after the values done so far.
+    pub fn cancel(&mut self) {
+        self.cancelled = true;
+        self.sim = None;
+    }
+
+    /// Fraction of the values done.
+    pub fn progress(&self) -> f32 {
+        self.points.len() as f32 / self.values.len().max(1) as f32
+    }
+
+    /// Advances the study until `deadline`: builds the simulation of the
+    /// next value, then advances its growth in resumable chunks until a
+    /// step grows a tip or the run ends. (Building one simulation is not
+    /// split: on the default scene it is a few tens of ms.)
+    pub fn tick(&mut self, deadline: Instant) {
+        while !self.finished() && Instant::now() < deadline {
+            let value = self.values[self.points.len()];
+            if self.sim.is_none() {
+                match self.build(value) {
+                    Ok(sim) => self.sim = Some(sim),
+                    Err(e) => {
+                        self.record(value, None, Vec::new(), None, 0, Some(e));
+                        continue;
+                    }
+                }
+            }
+            let Some(sim) = self.sim.as_mut() else {
+                continue;
+            };
+            let t0 = Instant::now();
+            let n = self.sweeps_per_call.max(1);
+            match sim.advance_growth(n) {
+                Err(e) => {
+                    let steps = sim.history().len();
+                    self.record(value, None, Vec::new(), None, steps, Some(e.to_string()));
+                }
+                Ok(Some(step)) if !step.grown.is_empty() => {
+                    let steps = sim.history().len();
+                    self.record(value, Some(step.load_factor), step.grown, None, steps, None);
+                }
+                Ok(_) => {
+                    if let Some(outcome) = sim.growth_finished() {
+                        let steps = sim.history().len();
+                        self.record(value, None, Vec::new(), Some(outcome), steps, None);
+                    }
+                }
+            }
+            let now = Instant::now();
+            if now < deadline {
+                let per_sweep = (now - t0).as_secs_f64() / n as f64;
+                let left = (deadline - now).as_secs_f64();
+                self.sweeps_per_call =
+                    ((0.25 * left / per_sweep.max(1e-7)) as usize).clamp(1, 10_000);
+            }
+        }
+    }
+
+    fn build(&self, value: f64) -> Result<Simulation, String> {
+        let mut scene = self
+            .base
+            .with_param(&self.path, value)
+            .map_err(|e| e.to_string())?;
+        scene.solver = growth_solver(&scene.solver, self.accelerate);
+        Simulation::new(scene).map_err(|e| e.to_string())
+    }
+
+    fn record(
+        &mut self,
+        value: f64,
+        load_factor: Option<f64>,
+        grown: Vec<GrownTip>,
+        outcome: Option<Outcome>,
+        steps: usize,
+        error: Option<String>,
+    ) {
+        self.sim = None;
+        self.points.push(StudyPoint {
+            value,
+            load_factor,
+            grown,
+            outcome,
+            steps,
+            error,
+        });
+    }
+
+    /// One row per grown tip (or one row saying none grew): the parameter
+    /// in SI units, the load factor, the tip, its mode, kink angle (degrees
+    /// from the crack's direction) and SIFs (Pa·√m).
+    pub fn to_csv(&self) -> String {
+        let mut out = format!(
+            "{},load_factor,crack,tip,mode,angle_deg,k1,k2,steps,outcome,error\n",
+            self.path
+        );
+        for p in &self.points {
+            let outcome = p
+                .outcome
+                .map(|o| format!("{o:?}").to_lowercase())
+                .unwrap_or_default();
+            let error = p.error.as_deref().unwrap_or("").replace([',', '\n'], ";");
+            let lambda = p.load_factor.map(|l| l.to_string()).unwrap_or_default();
+            if p.grown.is_empty() {
+                let _ = writeln!(
+                    out,
+                    "{},{lambda},,,none,,,,{},{outcome},{error}",
+                    p.value, p.steps
+                );
+            }
+            for g in &p.grown {
+                let _ = writeln!(
+                    out,
+                    "{},{lambda},{},{},{},{},{},{},{},{outcome},{error}",
+                    p.value,
+                    g.crack,
+                    g.tip,
+                    mode_name(g.mode),
+                    g.angle_deg,
+                    g.k1,
+                    g.k2,
+                    p.steps
+                );
+            }
+        }
+        out
+    }
+}
+
+pub fn mode_name(mode: Mode) -> &'static str {
+    match mode {
+        Mode::Tension => "tension",
+        Mode::Shear => "shear",
+        Mode::None => "none",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn values_are_evenly_spaced_in_si() {
+        let s = StudySetup {
+            path: "boundary.right.normal".to_owned(),
+            from: -2.0,
+            to: -6.0,
+            count: 3,
+        };
+        let v = s.values();
+        assert_eq!(v.len(), 3);
+        assert!(
+            (v[0] + 2e6).abs() < 1e-6 && (v[1] + 4e6).abs() < 1e-6 && (v[2] + 6e6).abs() < 1e-6
+        );
+    }
+
+    #[test]
+    fn a_bad_path_is_refused_with_a_reason() {
+        let scene = crate::scenes::default_scene();
+        let err = Study::new(&scene, "cracks.0.nothing", vec![1.0], true)
+            .err()
+            .unwrap_or_default();
+        assert!(err.contains("nothing"), "{err}");
+    }
+}

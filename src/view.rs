@@ -1,0 +1,103 @@
+//! The narrow interface between the app and its panels. Panels never see
+//! [`crate::WorkbenchApp`]: they read an [`AppView`] (a read-only snapshot
+//! of what they show), edit how things are shown in place through a
+//! [`ViewState`], and push [`crate::Command`]s for everything else.
+
+use cdca::scene::SolverKind;
+use cdca::{CriterionCurve, Scene};
+
+use crate::canvas::ViewSettings;
+use crate::compare::Race;
+use crate::edit::Editor;
+use crate::runner::RunMode;
+use crate::solution::SolutionView;
+use crate::study::{Study, StudySetup};
+
+/// A message shown above the canvas until dismissed.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Message {
+    Error(String),
+    Info(String),
+}
+
+/// Which plot the bottom panel shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PlotTab {
+    #[default]
+    ResidualBySweep,
+    ResidualByTime,
+    Sifs,
+    Angles,
+    LoadFactor,
+    SolverComparison,
+    /// A parameter study: kink angle and mode against one parameter.
+    Study,
+}
+
+impl PlotTab {
+    /// The plot that has something to show for `scene` before any run: the
+    /// residual for an iterative solver, the SIFs for the direct one.
+    pub fn fitting(scene: &Scene) -> Self {
+        if scene.solver.kind == cdca::scene::SolverKind::Direct {
+            Self::Sifs
+        } else {
+            Self::ResidualBySweep
+        }
+    }
+}
+
+/// The solver's progress as the panels show it.
+#[derive(Clone, Copy, Debug, Default)]
+#[allow(clippy::struct_excessive_bools)]
+pub struct RunStatus {
+    pub mode: RunMode,
+    /// The edited scene differs from the simulated one.
+    pub stale: bool,
+    /// Fraction of the field sampled, while sampling goes on.
+    pub field_progress: Option<f32>,
+    /// Wall time of the last full solve, s.
+    pub last_solve_seconds: Option<f64>,
+    /// Wall time of the last discretisation build, s.
+    pub last_build_seconds: f64,
+    /// Sweeps per frame (None: as many as the budget allows).
+    pub pace: Option<usize>,
+    /// Growth with the automaton runs its multigrid-accelerated form.
+    pub accelerate_growth: bool,
+    /// The solver growth uses on the current simulation.
+    pub growth_solver: SolverKind,
+}
+
+/// What the panels read.
+pub struct AppView<'a> {
+    pub scene: &'a Scene,
+    /// Where the scene came from (file name or bundled title).
+    pub scene_source: &'a str,
+    pub solution: &'a SolutionView,
+    pub run: RunStatus,
+    pub can_undo: bool,
+    pub can_redo: bool,
+    /// The solver race, running or finished.
+    pub race: Option<&'a Race>,
+    /// The parameter study, running or finished.
+    pub study: Option<&'a Study>,
+    pub selected_tip: Option<usize>,
+    /// σ_θθ and τ_rθ around the selected tip, when available.
+    pub tip_curve: Option<&'a CriterionCurve>,
+    /// The deformation magnification the canvas used last frame.
+    pub deform_scale_used: f64,
+}
+
+/// What the panels may change in place: how things are shown, never the
+/// scene or the solver.
+pub struct ViewState<'a> {
+    pub settings: &'a mut ViewSettings,
+    /// Tool, selection and crack being drawn.
+    pub editor: &'a mut Editor,
+    pub plot_tab: &'a mut PlotTab,
+    /// Fit the specimen to the canvas next frame.
+    pub fit_requested: &'a mut bool,
+    /// Time cap of one iterative solver in the race, s.
+    pub race_time_cap: &'a mut f64,
+    /// The parameter study to run next.
+    pub study_setup: &'a mut StudySetup,
+}

@@ -110,13 +110,16 @@ fn circle(radius: f64) -> PlotPoints<'static> {
 
 fn polar_plot_ui(ui: &mut Ui, scene: &Scene, tip: &TipReport, c: &CriterionCurve) {
     let comprehensive = scene.criterion.kind == CriterionKind::Comprehensive;
-    let (friction, cohesion) = c.shear_envelope;
     let tau_abs: Vec<f64> = c.tau_rt.iter().map(|t| t.abs()).collect();
+    // empty where the shear branch does not apply (open faces at the tip)
     let tau_limit: Vec<f64> = c
-        .sigma_tt
-        .iter()
-        .map(|s| (-s).max(0.0) * friction + cohesion)
-        .collect();
+        .shear_envelope
+        .map_or_else(Vec::new, |(friction, cohesion)| {
+            c.sigma_tt
+                .iter()
+                .map(|s| (-s).max(0.0) * friction + cohesion)
+                .collect()
+        });
     let base = c
         .sigma_tt
         .iter()
@@ -138,6 +141,9 @@ fn polar_plot_ui(ui: &mut Ui, scene: &Scene, tip: &TipReport, c: &CriterionCurve
         units::mm(c.r0),
         units::mpa(base)
     ));
+    if comprehensive && c.shear_envelope.is_none() {
+        ui.weak("Shear branch off: the faces at this tip are open.");
+    }
     // square, as wide as the panel, with the outermost curve inside
     let reach = outer * 1e-6 * 1.05;
     Plot::new("polar")
@@ -170,7 +176,7 @@ fn polar_plot_ui(ui: &mut Ui, scene: &Scene, tip: &TipReport, c: &CriterionCurve
                     .color(SIGMA_COLOR)
                     .style(LineStyle::dashed_loose()),
             );
-            if comprehensive {
+            if comprehensive && !tau_limit.is_empty() {
                 plot.line(
                     Line::new("|τ_rθ|", polar(&c.theta_deg, tau_abs.iter().copied(), base))
                         .color(TAU_COLOR)

@@ -67,8 +67,24 @@ pub fn solve_with_contact(
     solver: &mut dyn LinearSolver,
     params: ContactParams,
 ) -> Result<(Vec<FaceState>, ContactInfo), SolveError> {
+    solve_with_contact_from(x, f_ext, committed, committed.to_vec(), u, solver, params)
+}
+
+/// [`solve_with_contact`] with the iteration started from the states
+/// `initial` (a guess of which points are open, stuck or slipping) instead
+/// of the committed ones; the slip history is still `committed`'s.
+pub fn solve_with_contact_from(
+    x: &Xfem,
+    f_ext: &[f64],
+    committed: &[FaceState],
+    initial: Vec<FaceState>,
+    u: &mut Vec<f64>,
+    solver: &mut dyn LinearSolver,
+    params: ContactParams,
+) -> Result<(Vec<FaceState>, ContactInfo), SolveError> {
     let n = x.faces.len();
-    let mut states: Vec<FaceState> = committed.to_vec();
+    assert_eq!(initial.len(), n, "one initial state per face point");
+    let mut states = initial;
     let mut tracker = FlipTracker::new(n);
     let mut info = ContactInfo::default();
     let mut kinds: Vec<ContactState> = Vec::new();

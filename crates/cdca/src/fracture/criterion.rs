@@ -53,12 +53,15 @@ pub struct CriterionParams {
     pub shear: ShearStrength,
 }
 
-/// Friction coefficient μ and cohesion c_c (Pa) of the faces of the crack
-/// whose tip is evaluated.
+/// The faces of the crack whose tip is evaluated: friction coefficient μ,
+/// cohesion c_c (Pa), and whether the faces next to the tip are in contact.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Faces {
     pub friction: f64,
     pub cohesion: f64,
+    /// Most of the face length within two element sizes of the tip is
+    /// closed (stick or slip).
+    pub closed: bool,
 }
 
 impl CriterionParams {
@@ -80,14 +83,26 @@ impl CriterionParams {
     }
 
     /// Friction coefficient and cohesion (Pa) of the shear branch at a tip
-    /// of a crack with `faces`: see [`ShearStrength`].
-    pub fn shear_envelope(&self, faces: Faces) -> (f64, f64) {
+    /// of a crack with `faces`, or `None` where the branch does not apply:
+    /// see [`ShearStrength`].
+    ///
+    /// The `Faces` envelope is the crack's own faces extending in shear, so
+    /// it needs those faces in contact next to the tip. At an open tip
+    /// (a tensile wing) the faces carry no friction, and the peak of
+    /// |τ_rθ| off the crack line (±40°) is the bulk's own compression (the
+    /// T-stress), not a shear singularity of the tip. Checked there, it
+    /// made wings under uniaxial compression turn ±40° in shear once the
+    /// load passed about 110 MPa, then turn back ∓90° in tension from the
+    /// closed segment that left, so they zig-zagged instead of running
+    /// parallel to the load.
+    pub fn shear_envelope(&self, faces: Faces) -> Option<(f64, f64)> {
         match self.shear {
-            ShearStrength::Faces => (
+            ShearStrength::Faces if !faces.closed => None,
+            ShearStrength::Faces => Some((
                 faces.friction,
                 faces.cohesion + self.k_iic / (2.0 * PI * self.r0).sqrt(),
-            ),
-            ShearStrength::Rock => (self.friction_angle.tan(), self.cohesion),
+            )),
+            ShearStrength::Rock => Some((self.friction_angle.tan(), self.cohesion)),
         }
     }
 }
@@ -172,8 +187,21 @@ fn polar(s: [f64; 3], th: f64) -> (f64, f64) {
 /// small against the element size, and carries the normal and shear
 /// tractions of a closed crack's faces, which the traction-free expansion
 /// ([`sample_williams`]) lacks.
+///
+/// The singular term uses `K_I⁺ = max(K_I, 0)`: faces cannot pass through
+/// each other, so a closed tip has K_I = 0 and its compression is the
+/// faces' σ22 of the uniform term. A negative K_I is the compliance of the
+/// contact law (a joint of 200 GPa/m lets compressed faces overlap by
+/// σ_n/k_N ≈ 0.25 mm, about an element); counted in the singular term as
+/// well it pushed the tension kink of a sliding tip from the classic ≈70°
+/// to the ±90° search limit, and closed wings saw-toothed at ±90°.
 pub fn sample_hybrid(s: &Sifs, uniform: [f64; 3], r0: f64) -> Circle {
-    let mut c = sample_williams(&Sifs { t: 0.0, ..*s }, r0);
+    let singular = Sifs {
+        k1: s.k1.max(0.0),
+        t: 0.0,
+        ..*s
+    };
+    let mut c = sample_williams(&singular, r0);
     for (i, &th) in c.theta.iter().enumerate() {
         let (stt, trt) = polar(uniform, th);
         c.sigma_tt[i] += stt;
@@ -289,13 +317,16 @@ pub fn assess(
                 out.angle_deg = t0.to_degrees();
                 return (out, utilisation);
             }
+            out.angle_deg = t0.to_degrees();
+            let Some((friction, cohesion)) = p.shear_envelope(faces) else {
+                return (out, utilisation);
+            };
             let abs_tau: Vec<f64> = circle.tau_rt.iter().map(|v| v.abs()).collect();
             let Some((t1, tau)) = argmax(&circle.theta, &abs_tau) else {
                 return (out, utilisation);
             };
             let sigma_n = -interpolate(&circle.theta, &circle.sigma_tt, t1);
             out.angle_deg = t1.to_degrees();
-            let (friction, cohesion) = p.shear_envelope(faces);
             let strength = sigma_n.max(0.0) * friction + cohesion;
             utilisation = f64::max(utilisation, ratio(tau, strength));
             if tau >= strength {

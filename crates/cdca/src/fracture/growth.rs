@@ -1,10 +1,13 @@
 //! Geometry of crack growth (SPEC §9): extend a tip by Δa at the kink
 //! angle; a segment that would cross another crack ends on it (junction),
 //! one that would leave the specimen ends on the boundary. A tip that comes
-//! within half an element of a crack or the boundary is snapped onto it.
+//! within `snap` (one element, see `Simulation`'s growth) of a crack or the
+//! boundary is snapped onto it: a ligament narrower than an element is not
+//! resolved by the mesh (both cracks enrich the same elements), so the two
+//! have linked (BACKGROUND §3.10, coalescence).
 
 use crate::geometry::cracks::{Crack, TipFrame, first_crossing};
-use crate::geometry::plane::{P2, clip_segment_to_box};
+use crate::geometry::plane::{P2, clip_segment_to_box, closest_on_segment};
 
 /// Default growth increment `Δa = max(r0, 3h)`: the criterion's radius, but
 /// no shorter than three elements, below which a new segment and the
@@ -71,8 +74,28 @@ pub fn extend(
     match best {
         Some((s, p, m)) if s <= exit => Extension::Junction(p, m),
         _ if exit < 1.0 => Extension::Boundary(a + exit * (b - a)),
-        _ => Extension::Free(a + da * d),
+        _ => {
+            let p = a + da * d;
+            nearest_other(cracks, c, p)
+                .filter(|&(q, _)| (q - p).norm() <= snap)
+                .map_or(Extension::Free(p), |(q, m)| Extension::Junction(q, m))
+        }
     }
+}
+
+/// The point nearest to `p` on any crack other than `c`, and that crack.
+fn nearest_other(cracks: &[Crack], c: usize, p: P2) -> Option<(P2, usize)> {
+    let mut best: Option<(f64, P2, usize)> = None;
+    for (m, other) in cracks.iter().enumerate().filter(|&(m, _)| m != c) {
+        for (s, e) in other.segments() {
+            let q = s + closest_on_segment(p, s, e) * (e - s);
+            let dist = (q - p).norm();
+            if best.is_none_or(|(bd, _, _)| dist < bd) {
+                best = Some((dist, q, m));
+            }
+        }
+    }
+    best.map(|(_, q, m)| (q, m))
 }
 
 /// First crossing of `ab` with the crack's own polyline, ignoring the
@@ -140,6 +163,31 @@ mod tests {
         // a short step stays free
         assert!(matches!(
             extend(&cracks, 0, 0, 0.0, 0.05, 1.0, 1.0, 0.01),
+            Extension::Free(_)
+        ));
+    }
+
+    /// A tip that ends beside another crack, within the snap distance but
+    /// not crossing it, ends on its nearest point (coalescence); one just
+    /// outside stays free.
+    #[test]
+    fn a_tip_that_ends_beside_another_crack_joins_it() {
+        let cracks = vec![
+            crack(&[[0.2, 0.5], [0.4, 0.5]]),
+            // runs parallel to the growth direction, 0.008 above its path
+            crack(&[[0.45, 0.508], [0.6, 0.508]]),
+        ];
+        match extend(&cracks, 0, 1, 0.0, 0.1, 1.0, 1.0, 0.01) {
+            Extension::Junction(p, 1) => {
+                assert!(
+                    (p.x - 0.5).abs() < 1e-12 && (p.y - 0.508).abs() < 1e-12,
+                    "{p:?}"
+                );
+            }
+            e => panic!("{e:?}"),
+        }
+        assert!(matches!(
+            extend(&cracks, 0, 1, 0.0, 0.1, 1.0, 1.0, 0.007),
             Extension::Free(_)
         ));
     }

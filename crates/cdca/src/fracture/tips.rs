@@ -1,9 +1,9 @@
 //! Evaluation of every free tip after a solve: SIFs by the interaction
 //! integral (with the contact tractions) and the criterion's decision.
 
-use crate::contact::law::FaceState;
+use crate::contact::law::{ContactState, FaceState};
 use crate::discretisation::field::Field;
-use crate::discretisation::xfem::Xfem;
+use crate::discretisation::xfem::{FacePoint, Xfem};
 use crate::fracture::criterion::{
     Circle, CriterionParams, Faces, assess, sample_field, sample_hybrid, sample_williams,
     uniform_stress,
@@ -39,6 +39,8 @@ pub struct Evaluation {
     pub tips: Vec<TipReport>,
     /// The sampled circles.
     pub circles: Vec<Circle>,
+    /// The faces at each tip, as the criterion saw them.
+    pub faces: Vec<Faces>,
     /// Each tip's utilisation (see [`assess`]): ≥ 1 exactly when it grows.
     pub utilisation: Vec<f64>,
 }
@@ -74,6 +76,7 @@ pub fn evaluate_tips(
         let faces = Faces {
             friction: crack.friction,
             cohesion: crack.cohesion,
+            closed: closed_near_tip(x, states, c, &frame),
         };
         let (criterion, utilisation) = assess(params, &circle, &s, faces);
         out.tips.push(TipReport {
@@ -87,6 +90,7 @@ pub fn evaluate_tips(
             criterion,
         });
         out.circles.push(circle);
+        out.faces.push(faces);
         out.utilisation.push(utilisation);
     }
     out
@@ -100,12 +104,9 @@ pub fn evaluate_tips(
 /// is the force per area on the `−` side (`p_N < 0` in compression), so
 /// `σ·n = p`; with `e2 = ±n`, `σ22 = ±p·e2` and `σ12 = ±p·e1`.
 fn face_stress(x: &Xfem, tractions: &[P2], c: usize, frame: &TipFrame) -> P2 {
-    let reach = 2.0 * x.mesh.h();
     let (mut sum, mut w) = (P2::zeros(), 0.0);
-    for (fp, p) in x.faces.iter().zip(tractions) {
-        if fp.crack != c || (fp.x - frame.origin).norm() > reach {
-            continue;
-        }
+    for (i, fp) in near_tip(x, c, frame) {
+        let p = tractions[i];
         let side = if fp.n.dot(&frame.e2) >= 0.0 {
             1.0
         } else {
@@ -115,4 +116,31 @@ fn face_stress(x: &Xfem, tractions: &[P2], c: usize, frame: &TipFrame) -> P2 {
         w += fp.w;
     }
     if w > 0.0 { sum / w } else { P2::zeros() }
+}
+
+/// Whether most of crack `c`'s face length within two element sizes of
+/// the tip is in contact (stick or slip).
+fn closed_near_tip(x: &Xfem, states: &[FaceState], c: usize, frame: &TipFrame) -> bool {
+    let (mut closed, mut all) = (0.0, 0.0);
+    for (i, fp) in near_tip(x, c, frame) {
+        all += fp.w;
+        if states.get(i).is_some_and(|s| s.state != ContactState::Open) {
+            closed += fp.w;
+        }
+    }
+    all > 0.0 && closed > 0.5 * all
+}
+
+/// Crack `c`'s face pieces (index, piece) whose midpoints lie within two
+/// element sizes of the tip.
+fn near_tip<'a>(
+    x: &'a Xfem,
+    c: usize,
+    frame: &'a TipFrame,
+) -> impl Iterator<Item = (usize, &'a FacePoint)> + 'a {
+    let reach = 2.0 * x.mesh.h();
+    x.faces
+        .iter()
+        .enumerate()
+        .filter(move |(_, fp)| fp.crack == c && (fp.x - frame.origin).norm() <= reach)
 }

@@ -38,7 +38,11 @@ impl Simulation {
         let Some(run) = &self.scratch.critical else {
             return;
         };
-        self.state.faces.clone_from(&run.base_faces);
+        // the states just solved (this step's last trial, or the last
+        // step's λ_cr carried over to the grown cracks) start the next
+        // trial's contact iteration; its slip history is `base_faces`
+        let solved = std::mem::replace(&mut self.state.faces, run.base_faces.clone());
+        self.scratch.contact_guess = Some(solved);
         if self.state.lambda > 0.0 {
             let s = lambda / self.state.lambda;
             self.state.u.iter_mut().for_each(|v| *v *= s);
@@ -86,6 +90,7 @@ impl Simulation {
             faces: self.state.faces.clone(),
             tips: self.scratch.tips.clone(),
             circles: self.scratch.circles.clone(),
+            tip_faces: self.scratch.tip_faces.clone(),
             utilisation: self.scratch.utilisation.clone(),
             contact: self.scratch.contact.clone(),
             residual: self.scratch.residual.clone(),
@@ -99,6 +104,7 @@ impl Simulation {
         self.state.solved = true;
         self.scratch.tips = s.tips;
         self.scratch.circles = s.circles;
+        self.scratch.tip_faces = s.tip_faces;
         self.scratch.utilisation = s.utilisation;
         self.scratch.contact = s.contact;
         self.scratch.residual = s.residual;

@@ -204,7 +204,7 @@ impl Simulation {
     /// the discretisation, carrying contact states and displacement over.
     fn grow_tips(&mut self, growing: &[TipReport], da: f64) -> Vec<GrownTip> {
         let m = &self.model.mesh;
-        let snap = 0.5 * m.h();
+        let snap = m.h();
         let mut ext = Vec::new();
         for t in growing {
             let e = extend(

@@ -73,7 +73,8 @@ impl Simulation {
         if self.scratch.job.is_none() {
             self.scratch.residual.clear();
             let fresh = FlipTracker::new(self.state.faces.len());
-            self.scratch.job = Some(self.new_job(self.state.faces.clone(), fresh, 0, 0, 0.0)?);
+            let initial = self.initial_contact_states();
+            self.scratch.job = Some(self.new_job(initial, fresh, 0, 0, 0.0)?);
         }
         let Some(mut job) = self.scratch.job.take() else {
             unreachable!("a job was just started")

@@ -5,7 +5,8 @@
 use web_time::Instant;
 
 use super::state::Simulation;
-use crate::contact::iteration::solve_with_contact;
+use crate::contact::iteration::solve_with_contact_from;
+use crate::contact::law::FaceState;
 use crate::contact::law::counts;
 use crate::error::SolveError;
 use crate::fracture::tips::evaluate_tips;
@@ -26,10 +27,12 @@ impl Simulation {
             .map(|v| v * self.state.lambda)
             .collect();
         let params = self.contact_params();
-        let (states, info) = solve_with_contact(
+        let initial = self.initial_contact_states();
+        let (states, info) = solve_with_contact_from(
             &self.scratch.xfem,
             &f,
             &self.state.faces,
+            initial,
             &mut self.state.u,
             self.scratch.solver.as_mut(),
             params,
@@ -55,6 +58,16 @@ impl Simulation {
         Ok(self.report(seconds))
     }
 
+    /// The states the next contact iteration starts from: the guess left
+    /// by the last critical-control trial, or the committed states.
+    pub(super) fn initial_contact_states(&mut self) -> Vec<FaceState> {
+        self.scratch
+            .contact_guess
+            .take()
+            .filter(|g| g.len() == self.state.faces.len())
+            .unwrap_or_else(|| self.state.faces.clone())
+    }
+
     pub(super) fn evaluate(&mut self) {
         let e = evaluate_tips(
             &self.scratch.xfem,
@@ -65,6 +78,7 @@ impl Simulation {
         );
         self.scratch.tips = e.tips;
         self.scratch.circles = e.circles;
+        self.scratch.tip_faces = e.faces;
         self.scratch.utilisation = e.utilisation;
     }
 

@@ -11,7 +11,7 @@ use crate::contact::law::FaceState;
 use crate::discretisation::model::Model;
 use crate::discretisation::xfem::Xfem;
 use crate::error::SolveError;
-use crate::fracture::criterion::{Circle, CriterionParams};
+use crate::fracture::criterion::{Circle, CriterionParams, Faces};
 use crate::geometry::cracks::Crack;
 use crate::report::{GrowthStepReport, Outcome, TipReport};
 use crate::scene::Scene;
@@ -52,6 +52,8 @@ pub(super) struct Scratch {
     pub(super) solver: Box<dyn LinearSolver>,
     pub(super) tips: Vec<TipReport>,
     pub(super) circles: Vec<Circle>,
+    /// The faces at each free tip, as the criterion saw them.
+    pub(super) tip_faces: Vec<Faces>,
     pub(super) contact: ContactInfo,
     pub(super) residual: Vec<ResidualSample>,
     /// The resumable solve in progress, if any.
@@ -62,6 +64,9 @@ pub(super) struct Scratch {
     pub(super) utilisation: Vec<f64>,
     /// The critical-control step in progress, if any.
     pub(super) critical: Option<CriticalRun>,
+    /// Contact states the next solve's contact iteration starts from (a
+    /// guess: the slip history stays `State::faces`); `None`: from those.
+    pub(super) contact_guess: Option<Vec<FaceState>>,
 }
 
 impl Simulation {
@@ -81,12 +86,14 @@ impl Simulation {
                 solver: crate::solvers::choice::make_solver(&scene.solver),
                 tips: Vec::new(),
                 circles: Vec::new(),
+                tip_faces: Vec::new(),
                 contact: ContactInfo::default(),
                 residual: Vec::new(),
                 job: None,
                 growth_start: None,
                 utilisation: Vec::new(),
                 critical: None,
+                contact_guess: None,
             },
             state: State {
                 scene,

@@ -5,7 +5,6 @@
 use super::state::Simulation;
 use crate::contact::law::ContactState;
 use crate::discretisation::field::Field;
-use crate::fracture::criterion::Faces;
 use crate::geometry::plane::P2;
 use crate::report::TipReport;
 
@@ -44,8 +43,9 @@ pub struct CriterionCurve {
     /// r0, m.
     pub r0: f64,
     /// Shear branch `|τ| ≥ max(σ_n, 0) μ_s + c_s` at this tip: μ_s and
-    /// c_s (Pa).
-    pub shear_envelope: (f64, f64),
+    /// c_s (Pa); `None` where the branch does not apply (the default
+    /// envelope at an open tip).
+    pub shear_envelope: Option<(f64, f64)>,
 }
 
 impl Simulation {
@@ -132,11 +132,7 @@ impl Simulation {
     pub fn criterion_curve(&self, index: usize) -> Option<CriterionCurve> {
         let c = self.scratch.circles.get(index)?;
         let p = self.criterion_params();
-        let crack = &self.state.cracks[self.scratch.tips.get(index)?.crack];
-        let faces = Faces {
-            friction: crack.friction,
-            cohesion: crack.cohesion,
-        };
+        let faces = *self.scratch.tip_faces.get(index)?;
         Some(CriterionCurve {
             theta_deg: c.theta.iter().map(|t| t.to_degrees()).collect(),
             sigma_tt: c.sigma_tt.clone(),

@@ -495,6 +495,49 @@ fn grow_records_the_status_of_every_step() {
 /// tension at a large angle (> 45°), the high-friction one at a smaller
 /// angle or not at all (the paper's trend); a bad path is rejected (exit 2)
 /// before any work.
+/// Regression: negative values (compressive loads) were taken for flags
+/// (`unexpected argument '-1'`). Sweeping the lateral pressure of the
+/// paper's plate (P_V = 150 MPa, P_H = 15, 30, 45 MPa: k = 0.1, 0.2, 0.3,
+/// μ = 0.5, 40 × 40) turns tension into shear: the first value grows in
+/// tension at more than 45° to the flaw, the last in shear within 35°, the
+/// angles never rise, and λ_cr rises with the confinement.
+#[test]
+fn sweep_takes_negative_values_and_shows_the_confinement_transition() {
+    let dir = temp_dir("sweep_negative");
+    let text = std::fs::read_to_string(scenes_dir().join("plate_45_biaxial_k0.2_mu0.5.json"))
+        .expect("scene")
+        .replace("\"nx\": 120", "\"nx\": 40")
+        .replace("\"ny\": 120", "\"ny\": 40");
+    let scene = dir.join("plate.json");
+    std::fs::write(&scene, text).expect("write");
+    let run = cdca(&[
+        "sweep",
+        path_str(&scene),
+        "--param",
+        "boundary.right.normal",
+        "--values",
+        "-15e6,-30e6,-45e6",
+    ]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    let rows: Vec<Vec<&str>> = run
+        .stdout
+        .lines()
+        .skip(1)
+        .map(|l| l.split_whitespace().collect())
+        .collect();
+    assert_eq!(rows.len(), 3, "{}", run.stdout);
+    let angle = |r: &[&str]| r[1].parse::<f64>().expect("angle").abs();
+    let lambda = |r: &[&str]| r[3].parse::<f64>().expect("lambda");
+    assert_eq!(rows[0][2], "tension", "{}", run.stdout);
+    assert!(angle(&rows[0]) > 45.0, "{}", run.stdout);
+    assert_eq!(rows[2][2], "shear", "{}", run.stdout);
+    assert!(angle(&rows[2]) < 35.0, "{}", run.stdout);
+    for w in rows.windows(2) {
+        assert!(angle(&w[1]) <= angle(&w[0]) + 1e-9, "{}", run.stdout);
+        assert!(lambda(&w[1]) > lambda(&w[0]), "{}", run.stdout);
+    }
+}
+
 #[test]
 fn sweep_prints_a_table_and_writes_csv() {
     let dir = temp_dir("sweep");

@@ -4,11 +4,15 @@
 # driven by playwright-core from npm; no browser download), waits for the
 # canvas and the solved default scene, clicks Step and "Grow one step",
 # saves a screenshot and fails on any console error or panic message
-# (tests/web/smoke.mjs).
+# (tests/web/smoke.mjs). Then, in a fresh page, it presses Run growth on the
+# default scene and prints the browser's frame times for up to 20 s
+# ("browser frame times during Run growth: ..."; CDCA_RUN_GROWTH_MS sets
+# the duration, 0 skips it).
 #
 #   bash scripts/test-web.sh [--no-build] [SCREENSHOT]
 #       SCREENSHOT defaults to target-web/web-screenshot.png; the app's
-#       solve and frame timings go next to it (web-timings.txt).
+#       solve and frame timings, and the Run growth frame times, go next
+#       to it (web-timings.txt).
 #
 # Installs what it needs: chromium (apt-get), playwright-core (npm ci).
 set -euo pipefail

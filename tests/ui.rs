@@ -247,6 +247,34 @@ fn panels_show_only_what_the_scene_can_use() {
     assert!(h.query_by_label("Over-relaxation ω").is_some());
 }
 
+/// The Growth section offers the control and only the settings it uses:
+/// the default scene grows to failure (a maximum load factor, no load
+/// steps); switched to a load ramp it shows load steps and growth per load
+/// step instead.
+#[test]
+fn growth_settings_follow_the_control() {
+    let mut h = harness(no_solver());
+    h.run();
+    h.get_by_label("Growth").click();
+    h.run();
+    assert_eq!(
+        h.state().scene().growth.control,
+        cdca::scene::GrowthControl::Critical
+    );
+    assert!(h.query_by_label("Max load factor λ").is_some());
+    assert!(h.query_by_label("Load steps").is_none());
+    let mut s = h.state().scene().clone();
+    s.growth.control = cdca::scene::GrowthControl::Load;
+    h.state_mut().push(Command::SetScene {
+        scene: Box::new(s),
+        ongoing: false,
+    });
+    h.run();
+    assert!(h.query_by_label("Load steps").is_some());
+    assert!(h.query_by_label("Max growth per load step").is_some());
+    assert!(h.query_by_label("Max load factor λ").is_none());
+}
+
 // --- with the solver -------------------------------------------------------
 
 #[test]

@@ -21,7 +21,7 @@ const TABS: [(PlotTab, &str); 7] = [
     (PlotTab::ResidualByTime, "Residual vs time"),
     (PlotTab::Sifs, "K_I, K_II vs step"),
     (PlotTab::Angles, "Angles vs step"),
-    (PlotTab::LoadFactor, "Load factor vs step"),
+    (PlotTab::LoadFactor, "Load factor vs crack length"),
     (PlotTab::SolverComparison, "Solver race: error vs time"),
     (PlotTab::Study, "Study: angle, mode vs parameter"),
 ];
@@ -103,14 +103,21 @@ pub fn plots_ui(
                         .push([s.step as f64, t.k2 * 1e-6]);
                 }
             }
-            step_plot(ui, "sifs", "K [MPa·√m]", series, |(c, t, k)| {
-                format!(
-                    "K_{} crack {} end {}",
-                    if k == 1 { "I" } else { "II" },
-                    c + 1,
-                    t + 1
-                )
-            });
+            step_plot(
+                ui,
+                "sifs",
+                "growth step",
+                "K [MPa·√m]",
+                series,
+                |(c, t, k)| {
+                    format!(
+                        "K_{} crack {} end {}",
+                        if k == 1 { "I" } else { "II" },
+                        c + 1,
+                        t + 1
+                    )
+                },
+            );
         }
         PlotTab::Angles => {
             let mut series: BTreeMap<(usize, usize, u8), Vec<[f64; 2]>> = BTreeMap::new();
@@ -122,9 +129,14 @@ pub fn plots_ui(
                         .push([s.step as f64, g.angle_deg]);
                 }
             }
-            step_plot(ui, "angles", "kink angle [°]", series, |(c, t, _)| {
-                format!("crack {} end {}", c + 1, t + 1)
-            });
+            step_plot(
+                ui,
+                "angles",
+                "growth step",
+                "kink angle [°]",
+                series,
+                |(c, t, _)| format!("crack {} end {}", c + 1, t + 1),
+            );
         }
         PlotTab::LoadFactor => {
             let mut series = BTreeMap::new();
@@ -133,13 +145,19 @@ pub fn plots_ui(
                     (0, 0, 0),
                     view.history
                         .iter()
-                        .map(|s| [s.step as f64, s.load_factor])
+                        .map(|s| [s.crack_length * units::MM_PER_M, s.load_factor])
                         .collect(),
                 );
             }
-            step_plot(ui, "load", "load factor λ [–]", series, |_| {
-                "λ".to_owned()
-            });
+            // λ rising with the crack length is stable growth, falling unstable
+            step_plot(
+                ui,
+                "load",
+                "total crack length [mm]",
+                "load factor λ [–]",
+                series,
+                |_| "λ".to_owned(),
+            );
         }
         PlotTab::SolverComparison => race_ui(ui, v.race, cmds),
         PlotTab::Study => study_ui(ui, v.study, study_setup, cmds),
@@ -295,6 +313,7 @@ fn residual_plot(ui: &mut Ui, id: &str, x_label: &str, points: &[PlotPoint]) {
 fn step_plot(
     ui: &mut Ui,
     id: &str,
+    x_label: &str,
     y_label: &str,
     series: BTreeMap<(usize, usize, u8), Vec<[f64; 2]>>,
     name: impl Fn((usize, usize, u8)) -> String,
@@ -303,20 +322,18 @@ fn step_plot(
         ui.weak("No growth steps yet: press Grow one step or Run growth.");
         return;
     }
-    plot(id, "growth step", y_label)
-        .include_y(0.0)
-        .show(ui, |plot| {
-            for (i, (key, pts)) in series.into_iter().enumerate() {
-                let label = name(key);
-                let c = colour(i);
-                plot.line(Line::new(label.clone(), PlotPoints::from(pts.clone())).color(c));
-                plot.points(
-                    Points::new(label, PlotPoints::from(pts))
-                        .color(c)
-                        .radius(2.5),
-                );
-            }
-        });
+    plot(id, x_label, y_label).include_y(0.0).show(ui, |plot| {
+        for (i, (key, pts)) in series.into_iter().enumerate() {
+            let label = name(key);
+            let c = colour(i);
+            plot.line(Line::new(label.clone(), PlotPoints::from(pts.clone())).color(c));
+            plot.points(
+                Points::new(label, PlotPoints::from(pts))
+                    .color(c)
+                    .radius(2.5),
+            );
+        }
+    });
 }
 
 fn race_ui(ui: &mut Ui, race: Option<&Race>, cmds: &mut Vec<Command>) {

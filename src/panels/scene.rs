@@ -2,7 +2,9 @@
 //! criterion and growth. Only what the current scene can use is shown.
 
 use cdca::fracture::criterion::radius_and_strength;
-use cdca::scene::{CriterionKind, Fix, Material, Plane, Sampling, ShearStrength, SideBc};
+use cdca::scene::{
+    CriterionKind, Fix, GrowthControl, Material, Plane, Sampling, ShearStrength, SideBc,
+};
 use cdca::{ContactState, Scene};
 use egui::{CollapsingHeader, Grid, Ui};
 
@@ -381,17 +383,40 @@ fn growth_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
     CollapsingHeader::new("Growth")
         .default_open(false)
         .show(ui, |ui| {
+            choice(
+                ui,
+                "Control",
+                &mut s.growth.control,
+                &[
+                    (GrowthControl::Critical, "to failure (λ_cr per step)"),
+                    (GrowthControl::Load, "load ramp to the scene's load"),
+                ],
+            );
             Grid::new("growth").num_columns(2).show(ui, |ui| {
                 let g = &mut s.growth;
                 optional_row(ui, t, "Increment Δa", &mut g.increment, r0, MM, "mm");
-                count_row(ui, t, "Load steps", &mut g.load_steps, 1..=10_000);
-                count_row(
-                    ui,
-                    t,
-                    "Max growth per load step",
-                    &mut g.max_growth_per_step,
-                    1..=10_000,
-                );
+                // only the settings the chosen control uses
+                match g.control {
+                    GrowthControl::Load => {
+                        count_row(ui, t, "Load steps", &mut g.load_steps, 1..=10_000);
+                        count_row(
+                            ui,
+                            t,
+                            "Max growth per load step",
+                            &mut g.max_growth_per_step,
+                            1..=10_000,
+                        );
+                    }
+                    GrowthControl::Critical => quantity_row(
+                        ui,
+                        t,
+                        "Max load factor λ",
+                        &mut g.max_load_factor,
+                        1.0,
+                        "",
+                        1e-6..=1e6,
+                    ),
+                }
                 count_row(ui, t, "Max steps", &mut g.max_steps, 1..=100_000);
             });
         });

@@ -29,38 +29,27 @@ const t0 = Date.now();
 const elapsed = () => `${((Date.now() - t0) / 1000).toFixed(1)} s`;
 const log = (msg) => console.log(`[${elapsed()}] ${msg}`);
 
-// playwright gives the browser a new temporary profile of its own.
-const browser = await chromium.launch({
-    executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
-    headless: true,
-    args: [
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-quic",
-        "--no-first-run",
-        "--disable-background-networking",
-        "--disable-component-update",
-        "--disable-sync",
-        "--enable-unsafe-swiftshader",
-    ],
-});
-
-try {
-    const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+// Console messages of a page: the app's timing lines are kept, everything
+// else is printed; errors and panic messages are problems.
+function watch(page, tag = "") {
     page.on("console", (msg) => {
         const text = msg.text();
         if (text.startsWith("timing:") || text.includes(" timing: ")) {
-            timings.push(`[${elapsed()}] ${text}`);
+            timings.push(`[${elapsed()}] ${tag}${text}`);
         } else {
-            log(`console.${msg.type()}: ${text.split("\n")[0]}`);
+            log(`${tag}console.${msg.type()}: ${text.split("\n")[0]}`);
         }
         if (msg.type() === "error" || /panick?ed|\bpanic\b/i.test(text)) {
-            problems.push(`console.${msg.type()}: ${text}`);
+            problems.push(`${tag}console.${msg.type()}: ${text}`);
         }
     });
-    page.on("pageerror", (e) => problems.push(`page error: ${e.message}`));
-    page.on("requestfailed", (r) => problems.push(`request failed: ${r.url()} ${r.failure()?.errorText}`));
+    page.on("pageerror", (e) => problems.push(`${tag}page error: ${e.message}`));
+    page.on("requestfailed", (r) => problems.push(`${tag}request failed: ${r.url()} ${r.failure()?.errorText}`));
+}
 
+// Opens the app with its test hooks (`?cdca_test`) and waits until it has
+// started.
+async function open(page) {
     const sep = url.includes("?") ? "&" : "?";
     log(`open ${url}${sep}cdca_test`);
     await page.goto(`${url}${sep}cdca_test`);
@@ -77,25 +66,17 @@ try {
         throw new Error(`the page shows a start failure: ${status[1]}`);
     }
     log("app started");
+}
 
+// The app's state (src/web.rs), waiting on it, and clicks by label.
+function hooks(page) {
     const state = () => page.evaluate(() => window.cdcaState);
-    const waitState = (pred, what, timeout = STEP_TIMEOUT_MS) =>
+    const waitState = (pred, what, timeout = STEP_TIMEOUT_MS, arg = null) =>
         page
-            .waitForFunction(pred, null, { timeout, polling: 100 })
+            .waitForFunction(pred, arg, { timeout, polling: 100 })
             .catch(async (e) => {
                 throw new Error(`${what}: ${e.message}; state ${JSON.stringify(await state())}`);
             });
-
-    const tSolve = Date.now();
-    await waitState(
-        () => window.cdcaState?.solved && window.cdcaState.fieldShown,
-        "the default scene is solved and its field shown",
-        START_TIMEOUT_MS,
-    );
-    log(`solved, field shown (${Date.now() - tSolve} ms after start)`);
-    const solved = await state();
-    if (solved.message?.startsWith("error")) throw new Error(`app error: ${solved.message}`);
-    if (!(solved.fieldFinite > 0)) throw new Error(`no stress values in the field: ${JSON.stringify(solved)}`);
 
     // Clicks a widget by its label, like the egui_kittest tests natively.
     async function click(label) {
@@ -115,6 +96,41 @@ try {
     }
     // Moves the pointer off the buttons so no tooltip covers the screenshot.
     const park = () => page.mouse.move(1398, 898);
+    return { state, waitState, click, park };
+}
+
+// playwright gives the browser a new temporary profile of its own.
+const browser = await chromium.launch({
+    executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
+    headless: true,
+    args: [
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-quic",
+        "--no-first-run",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        "--enable-unsafe-swiftshader",
+    ],
+});
+
+try {
+    const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+    watch(page);
+    await open(page);
+    const { state, waitState, click, park } = hooks(page);
+
+    const tSolve = Date.now();
+    await waitState(
+        () => window.cdcaState?.solved && window.cdcaState.fieldShown,
+        "the default scene is solved and its field shown",
+        START_TIMEOUT_MS,
+    );
+    log(`solved, field shown (${Date.now() - tSolve} ms after start)`);
+    const solved = await state();
+    if (solved.message?.startsWith("error")) throw new Error(`app error: ${solved.message}`);
+    if (!(solved.fieldFinite > 0)) throw new Error(`no stress values in the field: ${JSON.stringify(solved)}`);
 
     const solvedShot = screenshotPath.replace(/\.png$/, "") + "-solved.png";
     await page.screenshot({ path: solvedShot });
@@ -137,6 +153,8 @@ try {
         await waitState(
             (n) => window.cdcaState?.growthSteps >= n && window.cdcaState.fieldShown,
             `growth step ${i} done and its field shown`,
+            STEP_TIMEOUT_MS,
+            i,
         );
         log(`growth step ${i}: ${Date.now() - tGrow} ms from click to field shown`);
     }
@@ -220,12 +238,117 @@ try {
     if (opened.message?.startsWith("error")) throw new Error(`after open: ${opened.message}`);
 } catch (e) {
     problems.push(`test: ${e.message}`);
+}
+
+// Frame times during Run growth, in a page of its own (see the top).
+let frameTimes = null;
+try {
+    for (const context of browser.contexts()) await context.close();
+    if (RUN_GROWTH_MS > 0) frameTimes = await runGrowthFrameTimes();
+} catch (e) {
+    problems.push(`run growth: ${e.message}`);
 } finally {
     await browser.close();
 }
 
+async function runGrowthFrameTimes() {
+    const tag = "[run growth] ";
+    const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+    watch(page, tag);
+    await open(page);
+    const { state, waitState, click, park } = hooks(page);
+    await waitState(
+        () => window.cdcaState?.solved && window.cdcaState.fieldShown && window.cdcaState.runMode === "Paused",
+        "the default scene is solved and its field shown",
+        START_TIMEOUT_MS,
+    );
+    const before = await state();
+    log(`${tag}scene "${before.sceneName}", ${before.growthSteps} growth steps`);
+
+    // A requestAnimationFrame loop in the page records, per frame, the
+    // time since the previous frame (performance.now() in the callback, so
+    // that the interval that first sees the run started holds the frame
+    // that started it, whichever order the app's and this callback run in)
+    // and the app's growth steps and run mode. It stops by itself: when the
+    // run ends, RUN_GROWTH_MS after it started, after 20 000 frames, or if
+    // the run has not started 30 s after the loop did.
+    await page.evaluate(
+        ({ durationMs }) => {
+            const rec = { frames: [], start: -1, done: false, why: "" };
+            window.cdcaFrameTimes = rec;
+            const t0 = performance.now();
+            let last = t0;
+            let tStart = 0;
+            const tick = () => {
+                const now = performance.now();
+                const s = window.cdcaState || {};
+                rec.frames.push([now - last, s.growthSteps ?? 0, s.runMode ?? ""]);
+                last = now;
+                if (rec.start < 0 && s.runMode && s.runMode !== "Paused") {
+                    rec.start = rec.frames.length - 1;
+                    tStart = now;
+                }
+                if (rec.start >= 0 && rec.frames.length - 1 > rec.start && s.runMode === "Paused") {
+                    rec.why = "the run ended";
+                } else if (rec.start >= 0 && now - tStart >= durationMs) {
+                    rec.why = `${durationMs / 1000} s elapsed`;
+                } else if (rec.frames.length >= 20_000) {
+                    rec.why = "20 000 frames";
+                } else if (rec.start < 0 && now - t0 > 30_000) {
+                    rec.why = "the run did not start within 30 s";
+                }
+                if (rec.why) rec.done = true;
+                else requestAnimationFrame(tick);
+            };
+            requestAnimationFrame(tick);
+        },
+        { durationMs: RUN_GROWTH_MS },
+    );
+    await click("Run growth");
+    await park();
+    await waitState(() => window.cdcaFrameTimes?.done, "the frame-time sampler stops", RUN_GROWTH_MS + 60_000);
+    const rec = await page.evaluate(() => window.cdcaFrameTimes);
+    const after = await state();
+    await page.close();
+    log(`${tag}sampling stopped: ${rec.why}; state ${JSON.stringify(after)}`);
+    if (rec.start < 0) throw new Error(rec.why);
+
+    // As natively (tests/ui.rs): the frame that starts the run (it builds
+    // the growth simulation) on its own, then every frame until the end.
+    const startFrame = rec.frames[rec.start][0];
+    const run = rec.frames.slice(rec.start + 1);
+    const steps = run.length ? run[run.length - 1][1] - before.growthSteps : 0;
+    const ms = run.map((f) => f[0]).sort((a, b) => a - b);
+    const n = ms.length;
+    if (!n) throw new Error("no frames after the start frame");
+    const mean = ms.reduce((a, b) => a + b, 0) / n;
+    const p95 = ms[Math.min(Math.floor((n * 95) / 100), n - 1)];
+    const max = ms[n - 1];
+    let t = 0;
+    const frozen = [];
+    for (const [dt, s, mode] of rec.frames.slice(rec.start)) {
+        t += dt;
+        if (dt > FROZEN_MS) frozen.push(`${dt.toFixed(0)} ms at ${(t / 1000).toFixed(2)} s (step ${s}, ${mode})`);
+    }
+    const summary =
+        `browser frame times during Run growth: ${n} frames, ${steps} growth steps; ` +
+        `mean ${mean.toFixed(1)} ms, p95 ${p95.toFixed(1)} ms, max ${max.toFixed(1)} ms`;
+    const details = [
+        `  (requestAnimationFrame intervals; start frame ${startFrame.toFixed(0)} ms not counted; ` +
+            `${(t / 1000).toFixed(1)} s, stopped: ${rec.why})`,
+        `  frames over ${FROZEN_MS} ms: ${frozen.length ? frozen.join("; ") : "none"}`,
+    ];
+    if (steps <= 0) throw new Error(`no growth step in ${(t / 1000).toFixed(1)} s: ${summary}`);
+    return [summary, ...details];
+}
+
 console.log("\n--- timings logged by the app (src/web.rs) ---");
 for (const t of timings) console.log(t);
+if (frameTimes) {
+    console.log("");
+    for (const line of frameTimes) console.log(line);
+    timings.push(...frameTimes);
+}
 if (timingsPath) writeFileSync(timingsPath, timings.join("\n") + "\n");
 
 if (problems.length) {

@@ -19,7 +19,13 @@ pub struct Args {
     #[arg(long, value_name = "PATH")]
     param: String,
     /// Comma-separated values of the parameter.
-    #[arg(long, value_name = "A,B,C", value_delimiter = ',', required = true, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        value_name = "A,B,C",
+        value_delimiter = ',',
+        required = true,
+        allow_hyphen_values = true
+    )]
     values: Vec<f64>,
     /// Also write the table as CSV to this file.
     #[arg(long, value_name = "FILE")]

@@ -136,6 +136,10 @@ pub struct GrowthStepReport {
     pub converged: bool,
     pub solver_iterations: usize,
     pub seconds: f64,
+    /// Total length of all cracks after the step, m (the abscissa of the
+    /// load factor: λ_cr rising with it is stable growth).
+    #[serde(default)]
+    pub crack_length: f64,
     /// Every free tip's SIFs and decision at this step.
     #[serde(default)]
     pub tips: Vec<TipReport>,

@@ -214,6 +214,13 @@ fn wing_cracks_curve_toward_the_load() {
     for p in c {
         assert!(p[0] >= -1e-12 && p[0] <= 0.03 + 1e-12 && p[1] >= -1e-12 && p[1] <= 0.03 + 1e-12);
     }
+    // each record's total crack length (the load-factor plot's abscissa)
+    // never falls, and the last equals the final polyline's length
+    for w in steps.windows(2) {
+        assert!(w[1].crack_length >= w[0].crack_length, "{:?}", w[1].step);
+    }
+    let last = steps.last().expect("steps").crack_length;
+    assert!((last - length(c)).abs() < 1e-12, "{last} vs {}", length(c));
 }
 
 /// λ_cr is the load at which the first tip just meets its criterion, to

@@ -10,7 +10,7 @@ use crate::discretisation::dofs::FIXED;
 use crate::discretisation::xfem::Reuse;
 use crate::error::SolveError;
 use crate::fracture::growth::{apply, default_increment, extend};
-use crate::geometry::cracks::{TipKind, classify_tips};
+use crate::geometry::cracks::{Crack, TipKind, classify_tips};
 use crate::geometry::plane::P2;
 use crate::report::{
     ContactCounts, GrownTip, GrowthStepReport, Mode, Outcome, SolveReport, TipReport,
@@ -157,6 +157,7 @@ impl Simulation {
             converged: report.converged() && search_closed,
             solver_iterations: report.solver.iterations,
             seconds: 0.0,
+            crack_length: 0.0,
             tips: report.tips.clone(),
         };
         if !step.converged {
@@ -195,6 +196,7 @@ impl Simulation {
         if self.state.outcome.is_none() && step.step >= max_steps {
             self.state.outcome = Some(Outcome::MaxSteps);
         }
+        step.crack_length = self.state.cracks.iter().map(Crack::length).sum();
         step.seconds = start.elapsed().as_secs_f64();
         self.state.history.push(step.clone());
         step

@@ -6,6 +6,16 @@
 // scene and the crack paths (downloads) and opens another scene through the
 // file dialog. Fails on any console error, page error or panic message.
 //
+// Then, in a new page (a fresh profile, so the default scene again), it
+// presses Run growth and measures the frame times for up to RUN_GROWTH_MS
+// or until the run ends, as scripts/frame_times.sh does natively: the
+// intervals between requestAnimationFrame callbacks, i.e. the browser's
+// frame times (the app's logic and UI, tessellation, WebGL painting and
+// compositing; never less than one display refresh, 16.7 ms at 60 Hz). It
+// prints `browser frame times during Run growth: N frames, S growth steps;
+// mean X ms, p95 Y ms, max Z ms` and adds it to TIMINGS.txt; it fails if
+// no growth step is made. CDCA_RUN_GROWTH_MS=0 skips it.
+//
 //   node tests/web/smoke.mjs URL SCREENSHOT.png [TIMINGS.txt]
 //
 // The page is opened with `?cdca_test`, which makes the app publish its
@@ -22,6 +32,9 @@ if (!url || !screenshotPath) {
 const GROW_CLICKS = 3;
 const START_TIMEOUT_MS = 180_000;
 const STEP_TIMEOUT_MS = 60_000;
+const RUN_GROWTH_MS = Number(process.env.CDCA_RUN_GROWTH_MS ?? 20_000);
+// A frame longer than this is listed on its own (the page looks frozen).
+const FROZEN_MS = 200;
 
 const problems = [];
 const timings = [];

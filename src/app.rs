@@ -430,7 +430,7 @@ impl WorkbenchApp {
         (view, state)
     }
 
-    /// The whole UI. Panels read an [`AppView`] and push commands.
+    /// The whole UI. Panels read an `AppView` and push commands.
     pub fn ui(&mut self, ui: &mut Ui) {
         let mut cmds = Vec::new();
         egui::Panel::top("menu").show(ui, |ui| {

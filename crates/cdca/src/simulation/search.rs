@@ -25,7 +25,7 @@ use crate::solvers::relaxation::ResidualSample;
 /// Relative width of the search's final bracket: λ_cr is the lowest trial
 /// load at which a tip meets its criterion, and either a trial at
 /// `λ ≥ (1 − LAMBDA_TOLERANCE) λ_cr` showed none meeting it, or the tip
-/// meets it to within [`UTILISATION_BAND`].
+/// meets it to within 0.05% (`UTILISATION_BAND`).
 pub const LAMBDA_TOLERANCE: f64 = 1e-3;
 
 /// A trial whose utilisation lies in `[1, 1 + UTILISATION_BAND]` ends the

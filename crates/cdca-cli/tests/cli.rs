@@ -495,6 +495,19 @@ fn grow_records_the_status_of_every_step() {
 /// tension at a large angle (> 45°), the high-friction one at a smaller
 /// angle or not at all (the paper's trend); a bad path is rejected (exit 2)
 /// before any work.
+/// The paper's plate (`plate_45_biaxial_k0.2_mu0.5.json`) on a 40 × 40
+/// mesh, written to a fresh directory: (directory, scene path).
+fn coarse_plate(name: &str) -> (PathBuf, PathBuf) {
+    let dir = temp_dir(name);
+    let text = std::fs::read_to_string(scenes_dir().join("plate_45_biaxial_k0.2_mu0.5.json"))
+        .expect("scene")
+        .replace("\"nx\": 120", "\"nx\": 40")
+        .replace("\"ny\": 120", "\"ny\": 40");
+    let scene = dir.join("plate.json");
+    std::fs::write(&scene, text).expect("write");
+    (dir, scene)
+}
+
 /// Regression: negative values (compressive loads) were taken for flags
 /// (`unexpected argument '-1'`). Sweeping the lateral pressure of the
 /// paper's plate (P_V = 150 MPa, P_H = 15, 30, 45 MPa: k = 0.1, 0.2, 0.3,
@@ -503,13 +516,7 @@ fn grow_records_the_status_of_every_step() {
 /// angles never rise, and λ_cr rises with the confinement.
 #[test]
 fn sweep_takes_negative_values_and_shows_the_confinement_transition() {
-    let dir = temp_dir("sweep_negative");
-    let text = std::fs::read_to_string(scenes_dir().join("plate_45_biaxial_k0.2_mu0.5.json"))
-        .expect("scene")
-        .replace("\"nx\": 120", "\"nx\": 40")
-        .replace("\"ny\": 120", "\"ny\": 40");
-    let scene = dir.join("plate.json");
-    std::fs::write(&scene, text).expect("write");
+    let (_dir, scene) = coarse_plate("sweep_negative");
     let run = cdca(&[
         "sweep",
         path_str(&scene),
@@ -540,13 +547,7 @@ fn sweep_takes_negative_values_and_shows_the_confinement_transition() {
 
 #[test]
 fn sweep_prints_a_table_and_writes_csv() {
-    let dir = temp_dir("sweep");
-    let text = std::fs::read_to_string(scenes_dir().join("plate_45_biaxial_k0.2_mu0.5.json"))
-        .expect("scene")
-        .replace("\"nx\": 120", "\"nx\": 40")
-        .replace("\"ny\": 120", "\"ny\": 40");
-    let scene = dir.join("plate.json");
-    std::fs::write(&scene, text).expect("write");
+    let (dir, scene) = coarse_plate("sweep");
     let csv = dir.join("sweep.csv");
     let run = cdca(&[
         "sweep",

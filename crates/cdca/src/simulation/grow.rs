@@ -277,6 +277,7 @@ impl Simulation {
         self.scratch.xfem = new;
         self.scratch.job = None;
         self.scratch.solver = crate::solvers::choice::make_solver(&self.model.scene.solver);
+        self.scratch.factored = None;
         self.state.faces = faces;
         self.state.u = u;
         self.state.solved = false;

@@ -33,6 +33,7 @@ impl Simulation {
             &f,
             &self.state.faces,
             initial,
+            &mut self.scratch.factored,
             &mut self.state.u,
             self.scratch.solver.as_mut(),
             params,

@@ -7,7 +7,7 @@ use web_time::Instant;
 use super::job::RelaxJob;
 use super::search::CriticalRun;
 use crate::contact::iteration::{ContactInfo, ContactParams};
-use crate::contact::law::FaceState;
+use crate::contact::law::{ContactState, FaceState};
 use crate::discretisation::model::Model;
 use crate::discretisation::xfem::Xfem;
 use crate::error::SolveError;
@@ -67,6 +67,10 @@ pub(super) struct Scratch {
     /// Contact states the next solve's contact iteration starts from (a
     /// guess: the slip history stays `State::faces`); `None`: from those.
     pub(super) contact_guess: Option<Vec<FaceState>>,
+    /// The contact states `solver`'s current matrix was built with (see
+    /// [`solve_with_contact_from`](crate::contact::iteration::solve_with_contact_from));
+    /// `None` with a new solver or discretisation.
+    pub(super) factored: Option<Vec<ContactState>>,
 }
 
 impl Simulation {
@@ -94,6 +98,7 @@ impl Simulation {
                 utilisation: Vec::new(),
                 critical: None,
                 contact_guess: None,
+                factored: None,
             },
             state: State {
                 scene,

@@ -217,7 +217,8 @@ try {
     }
     const [sceneFile, sceneText] = await download("Save scene…");
     const saved = JSON.parse(sceneText);
-    if (!sceneFile.endsWith(".json") || saved.name !== grown.sceneName || saved.mesh?.nx !== 40) {
+    // The default scene's mesh is 60 x 60 (assets/scenes/specimen_single_flaw.json).
+    if (!sceneFile.endsWith(".json") || saved.name !== grown.sceneName || saved.mesh?.nx !== 60) {
         throw new Error(`the saved scene ${sceneFile} is not the open scene: ${sceneText.slice(0, 200)}`);
     }
     const [csvFile, csvText] = await download("Export crack paths (CSV)…");
@@ -337,19 +338,30 @@ async function runGrowthFrameTimes() {
     const mean = ms.reduce((a, b) => a + b, 0) / n;
     const p95 = ms[Math.min(Math.floor((n * 95) / 100), n - 1)];
     const max = ms[n - 1];
+    // Frames over FROZEN_MS (start frame included): how many, and the
+    // five longest with when they ended (s after the start frame began).
     let t = 0;
     const frozen = [];
-    for (const [dt, s, mode] of rec.frames.slice(rec.start)) {
+    for (const [dt, s] of rec.frames.slice(rec.start)) {
         t += dt;
-        if (dt > FROZEN_MS) frozen.push(`${dt.toFixed(0)} ms at ${(t / 1000).toFixed(2)} s (step ${s}, ${mode})`);
+        if (dt > FROZEN_MS) frozen.push([dt, t, s]);
     }
+    const longest = [...frozen]
+        .sort((a, b) => b[0] - a[0])
+        .slice(0, 5)
+        .map(([dt, at, s]) => `${dt.toFixed(0)} ms at ${(at / 1000).toFixed(1)} s (step ${s})`);
+    // The app's own view (src/web.rs): CPU time of logic + UI per frame over
+    // its last 240 frames, logged every 2 s.
+    const cpu = timings.filter((l) => l.includes(`${tag}`) && l.includes("timing: frames")).pop();
     const summary =
         `browser frame times during Run growth: ${n} frames, ${steps} growth steps; ` +
         `mean ${mean.toFixed(1)} ms, p95 ${p95.toFixed(1)} ms, max ${max.toFixed(1)} ms`;
     const details = [
         `  (requestAnimationFrame intervals; start frame ${startFrame.toFixed(0)} ms not counted; ` +
             `${(t / 1000).toFixed(1)} s, stopped: ${rec.why})`,
-        `  frames over ${FROZEN_MS} ms: ${frozen.length ? frozen.join("; ") : "none"}`,
+        `  frames over ${FROZEN_MS} ms: ${frozen.length} of ${n + 1}` +
+            (frozen.length ? `; longest ${longest.join(", ")}` : ""),
+        `  app CPU per frame (last report): ${cpu ? cpu.replace(/^.*timing: /, "") : "none"}`,
     ];
     if (steps <= 0) throw new Error(`no growth step in ${(t / 1000).toFixed(1)} s: ${summary}`);
     return [summary, ...details];

@@ -75,6 +75,11 @@ pub struct Runner {
     pub accelerate_growth: bool,
     /// The growth solver settings were applied to the current simulation.
     growth_ready: bool,
+    /// Growth steps recorded when Grow one step was pressed: that run ends
+    /// once one more is recorded (counted from the click, not per frame: a
+    /// step completing at a frame's end used to let the run go on to the
+    /// end of growth).
+    one_step_from: usize,
     /// The solution version the canvas's field shows (or is sampling).
     field_version: u64,
     /// When the field last moved to a newer version.
@@ -97,6 +102,7 @@ impl Default for Runner {
             pace: None,
             accelerate_growth: true,
             growth_ready: false,
+            one_step_from: 0,
             field_version: 0,
             field_moved_at: None,
         }
@@ -202,6 +208,7 @@ impl Runner {
             }
         }
         self.growth_ready = true;
+        self.one_step_from = self.sim.as_ref().map_or(0, |s| s.history().len());
         self.mode = if one {
             RunMode::GrowingOne
         } else {
@@ -246,7 +253,7 @@ impl Runner {
         let Some(sim) = self.sim.as_mut() else {
             return Ok(true);
         };
-        let steps = sim.history().len();
+        let steps = self.one_step_from;
         let n = self.pace.unwrap_or(self.sweeps_per_call).max(1);
         let mut result = Ok(false);
         loop {

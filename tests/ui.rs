@@ -327,6 +327,35 @@ fn step_grows_the_residual_history() {
     );
 }
 
+/// Each click of Grow one step records exactly one growth step (the
+/// default scene grows to failure, so every step extends a tip) and ends
+/// paused.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn grow_one_step_records_one_step_per_click() {
+    let mut h = harness(Options::default());
+    h.run_steps(5);
+    for click in 1..=3 {
+        h.get_by_label("Grow one step").click();
+        h.run_steps(2);
+        for _ in 0..5000 {
+            if h.state().run_mode() == RunMode::Paused {
+                break;
+            }
+            h.step();
+        }
+        assert_eq!(
+            h.state().run_mode(),
+            RunMode::Paused,
+            "click {click}: the step ends"
+        );
+        assert_eq!(h.state().growth_steps(), click, "click {click}");
+    }
+}
+
 #[test]
 #[cfg_attr(
     debug_assertions,

@@ -398,7 +398,7 @@ fn grow_makes_the_crack_longer() {
 /// Frame time during Run growth on the default scene (logic + UI on the
 /// CPU, no GPU): `cargo test --release --test ui frame_time -- --nocapture`.
 #[test]
-#[ignore = "a timing measurement, not a test to run on shared machines (bash scripts/frame_times.sh; measured on a shared 2-core machine at load 4: mean 22 ms, p95 50 ms, max 94 ms; the chunk that extends the tips and rebuilds the discretisation is the maximum)"]
+#[ignore = "a timing measurement, not a test to run on shared machines (bash scripts/frame_times.sh; measured on the default scene, idle 2-core machine: mean 24.6 ms, p95 35-43 ms, max 68-77 ms; the chunk that extends the tips and rebuilds the discretisation is the maximum)"]
 fn frame_time_during_run_growth() {
     let mut h = harness(Options::default());
     h.run_steps(10);

@@ -392,6 +392,69 @@ mod tests {
         assert_eq!(mts_angle(1.0, 0.0), 0.0);
     }
 
+    /// The comprehensive criterion with the faces' envelope on a closed
+    /// mode-II tip under face compression: K_II = 1.2 K_IIC with no face
+    /// friction gives |τ_rθ(0)| = 1.2 K_IIC/√(2πr0) against the strength
+    /// K_IIC/√(2πr0), so a closed tip grows in shear straight ahead
+    /// (utilisation 1.2 ± 1%); the same circle at an open tip (the faces'
+    /// envelope does not apply) does not grow, its utilisation that of
+    /// the tension check alone.
+    #[test]
+    fn shear_branch_applies_only_at_closed_tips() {
+        let r0 = 1e-3;
+        let p = CriterionParams {
+            kind: CriterionKind::Comprehensive,
+            r0,
+            sigma_t: 10e6,
+            cohesion: 15e6,
+            friction_angle: 49f64.to_radians(),
+            k_ic: 1e6,
+            k_iic: 2e6,
+            shear: ShearStrength::Faces,
+        };
+        let s = Sifs {
+            k1: 0.0,
+            k2: 2.4e6,
+            t: 0.0,
+        };
+        // faces closed under 30 MPa: σ22 = σ11 = −30 MPa, σ12 = 0
+        let circle = sample_hybrid(&s, [-30e6, -30e6, 0.0], r0);
+        let mut faces = Faces {
+            friction: 0.0,
+            cohesion: 0.0,
+            closed: true,
+        };
+        let (closed, u_closed) = assess(&p, &circle, &s, faces);
+        assert_eq!(closed.mode, Mode::Shear);
+        assert!(closed.angle_deg.abs() < 0.5, "{}", closed.angle_deg);
+        assert!((u_closed - 1.2).abs() < 0.012, "{u_closed}");
+        faces.closed = false;
+        let (open, u_open) = assess(&p, &circle, &s, faces);
+        assert_eq!(open.mode, Mode::None);
+        let tension = circle.sigma_tt.iter().copied().fold(f64::MIN, f64::max) / p.sigma_t;
+        assert!(
+            u_open < 1.0 && (u_open - tension).abs() < 0.02 * tension.abs(),
+            "{u_open} {tension}"
+        );
+    }
+
+    /// The hybrid sampling's singular term uses K_I⁺: a negative K_I (the
+    /// contact law's compliance) samples the same circle as K_I = 0, and
+    /// its σ_θθ peak for pure K_II is the classical −70.5° (Erdogan–Sih).
+    #[test]
+    fn hybrid_sampling_takes_the_positive_part_of_k1() {
+        let s = |k1| Sifs {
+            k1,
+            k2: 1e6,
+            t: 0.0,
+        };
+        let a = sample_hybrid(&s(-3e6), [0.0; 3], 1e-3);
+        let b = sample_hybrid(&s(0.0), [0.0; 3], 1e-3);
+        assert_eq!(a, b);
+        let (th, _) = argmax(&b.theta, &b.sigma_tt).expect("samples");
+        assert!((th.to_degrees() + 70.53).abs() < 0.2, "{}", th.to_degrees());
+    }
+
     /// The Williams circle's σ_θθ maximum reproduces the MTS angle.
     #[test]
     fn williams_sampling_peaks_at_mts_angle() {

@@ -53,6 +53,16 @@ fn harness(options: Options) -> Harness<'static, WorkbenchApp> {
         )
 }
 
+/// Edits a copy of the open scene and applies it, as a panel would.
+fn edit_scene(h: &mut Harness<'_, WorkbenchApp>, edit: impl FnOnce(&mut cdca::Scene)) {
+    let mut s = h.state().scene().clone();
+    edit(&mut s);
+    h.state_mut().push(Command::SetScene {
+        scene: Box::new(s),
+        ongoing: false,
+    });
+}
+
 fn click_at(h: &mut Harness<'_, WorkbenchApp>, pos: Pos2) {
     h.event(Event::PointerMoved(pos));
     for pressed in [true, false] {
@@ -237,11 +247,8 @@ fn panels_show_only_what_the_scene_can_use() {
         "no friction without cracks"
     );
     assert!(h.query_by_label("Max contact iterations").is_none());
-    let mut s = h.state().scene().clone();
-    s.solver.kind = cdca::scene::SolverKind::Automaton;
-    h.state_mut().push(Command::SetScene {
-        scene: Box::new(s),
-        ongoing: false,
+    edit_scene(&mut h, |s| {
+        s.solver.kind = cdca::scene::SolverKind::Automaton
     });
     h.run();
     assert!(h.query_by_label("Over-relaxation ω").is_some());
@@ -263,11 +270,8 @@ fn growth_settings_follow_the_control() {
     );
     assert!(h.query_by_label("Max load factor λ").is_some());
     assert!(h.query_by_label("Load steps").is_none());
-    let mut s = h.state().scene().clone();
-    s.growth.control = cdca::scene::GrowthControl::Load;
-    h.state_mut().push(Command::SetScene {
-        scene: Box::new(s),
-        ongoing: false,
+    edit_scene(&mut h, |s| {
+        s.growth.control = cdca::scene::GrowthControl::Load
     });
     h.run();
     assert!(h.query_by_label("Load steps").is_some());
@@ -307,11 +311,8 @@ fn default_scene_opens_solved_and_a_tip_can_be_inspected() {
 fn step_grows_the_residual_history() {
     let mut h = harness(Options::default());
     h.run_steps(5);
-    let mut s = h.state().scene().clone();
-    s.solver.kind = cdca::scene::SolverKind::Automaton;
-    h.state_mut().push(Command::SetScene {
-        scene: Box::new(s),
-        ongoing: false,
+    edit_scene(&mut h, |s| {
+        s.solver.kind = cdca::scene::SolverKind::Automaton
     });
     h.run_steps(3);
     let before = h.state().residual_samples();
@@ -546,11 +547,8 @@ fn the_canvas_does_not_move_while_the_status_text_changes() {
     h.run_steps(3);
     let canvas =
         |h: &Harness<'_, WorkbenchApp>| h.get_by_label(cdca_workbench::app::CANVAS_LABEL).rect();
-    let mut s = h.state().scene().clone();
-    s.solver.kind = cdca::scene::SolverKind::Automaton;
-    h.state_mut().push(Command::SetScene {
-        scene: Box::new(s),
-        ongoing: false,
+    edit_scene(&mut h, |s| {
+        s.solver.kind = cdca::scene::SolverKind::Automaton
     });
     h.run_steps(2);
     let before = canvas(&h);
@@ -568,12 +566,7 @@ fn the_canvas_does_not_move_while_the_status_text_changes() {
 /// The default scene switched to `kind` (through the solver panel's path:
 /// a scene edit).
 fn with_solver(h: &mut Harness<'_, WorkbenchApp>, kind: cdca::scene::SolverKind) {
-    let mut s = h.state().scene().clone();
-    s.solver.kind = kind;
-    h.state_mut().push(Command::SetScene {
-        scene: Box::new(s),
-        ongoing: false,
-    });
+    edit_scene(h, |s| s.solver.kind = kind);
     h.run_steps(2);
 }
 
@@ -739,12 +732,9 @@ fn a_friction_study_records_the_first_growth_of_each_value() {
 fn a_capped_relaxation_is_shown_as_not_converged() {
     let mut h = harness(Options::default());
     h.run_steps(3);
-    let mut s = h.state().scene().clone();
-    s.solver.kind = cdca::scene::SolverKind::Automaton;
-    s.solver.max_iterations = 50;
-    h.state_mut().push(Command::SetScene {
-        scene: Box::new(s),
-        ongoing: false,
+    edit_scene(&mut h, |s| {
+        s.solver.kind = cdca::scene::SolverKind::Automaton;
+        s.solver.max_iterations = 50;
     });
     h.run_steps(2);
     h.get_by_label("Relax").click();

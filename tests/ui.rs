@@ -248,7 +248,7 @@ fn panels_show_only_what_the_scene_can_use() {
     );
     assert!(h.query_by_label("Max contact iterations").is_none());
     edit_scene(&mut h, |s| {
-        s.solver.kind = cdca::scene::SolverKind::Automaton
+        s.solver.kind = cdca::scene::SolverKind::Automaton;
     });
     h.run();
     assert!(h.query_by_label("Over-relaxation ω").is_some());
@@ -271,7 +271,7 @@ fn growth_settings_follow_the_control() {
     assert!(h.query_by_label("Max load factor λ").is_some());
     assert!(h.query_by_label("Load steps").is_none());
     edit_scene(&mut h, |s| {
-        s.growth.control = cdca::scene::GrowthControl::Load
+        s.growth.control = cdca::scene::GrowthControl::Load;
     });
     h.run();
     assert!(h.query_by_label("Load steps").is_some());
@@ -312,7 +312,7 @@ fn step_grows_the_residual_history() {
     let mut h = harness(Options::default());
     h.run_steps(5);
     edit_scene(&mut h, |s| {
-        s.solver.kind = cdca::scene::SolverKind::Automaton
+        s.solver.kind = cdca::scene::SolverKind::Automaton;
     });
     h.run_steps(3);
     let before = h.state().residual_samples();
@@ -548,7 +548,7 @@ fn the_canvas_does_not_move_while_the_status_text_changes() {
     let canvas =
         |h: &Harness<'_, WorkbenchApp>| h.get_by_label(cdca_workbench::app::CANVAS_LABEL).rect();
     edit_scene(&mut h, |s| {
-        s.solver.kind = cdca::scene::SolverKind::Automaton
+        s.solver.kind = cdca::scene::SolverKind::Automaton;
     });
     h.run_steps(2);
     let before = canvas(&h);

@@ -328,6 +328,20 @@ fn step_grows_the_residual_history() {
     );
 }
 
+/// Clicks Grow one step and runs frames until the step has ended: it runs
+/// in resumable chunks, then the grown cracks are solved.
+fn grow_one_step(h: &mut Harness<'_, WorkbenchApp>) {
+    h.get_by_label("Grow one step").click();
+    h.run_steps(2);
+    for _ in 0..5000 {
+        if h.state().run_mode() == RunMode::Paused {
+            break;
+        }
+        h.step();
+    }
+    assert_eq!(h.state().run_mode(), RunMode::Paused, "the step ends");
+}
+
 /// Each click of Grow one step records exactly one growth step (the
 /// default scene grows to failure, so every step extends a tip) and ends
 /// paused.
@@ -340,19 +354,7 @@ fn grow_one_step_records_one_step_per_click() {
     let mut h = harness(Options::default());
     h.run_steps(5);
     for click in 1..=3 {
-        h.get_by_label("Grow one step").click();
-        h.run_steps(2);
-        for _ in 0..5000 {
-            if h.state().run_mode() == RunMode::Paused {
-                break;
-            }
-            h.step();
-        }
-        assert_eq!(
-            h.state().run_mode(),
-            RunMode::Paused,
-            "click {click}: the step ends"
-        );
+        grow_one_step(&mut h);
         assert_eq!(h.state().growth_steps(), click, "click {click}");
     }
 }
@@ -378,16 +380,7 @@ fn grow_makes_the_crack_longer() {
         "solved on start: {before}"
     );
     for _ in 0..10 {
-        h.get_by_label("Grow one step").click();
-        // the step runs in resumable chunks, then the grown cracks are solved
-        h.run_steps(2);
-        for _ in 0..5000 {
-            if h.state().run_mode() == RunMode::Paused {
-                break;
-            }
-            h.step();
-        }
-        assert_eq!(h.state().run_mode(), RunMode::Paused, "one step ends");
+        grow_one_step(&mut h);
         if length(h.state()) > before + 1e-6 {
             break;
         }

@@ -53,6 +53,27 @@ fn default_sampling_kinks_by_erdogan_sih_at_any_radius() {
     }
 }
 
+/// A closed crack (half-length 0.1, μ = 0.3) at `deg` in the unit plate,
+/// slightly off centre so its tips sit inside elements, under P_V = 20 MPa
+/// and P_H = 5 MPa (rollers on the bottom and left).
+fn closed_crack_plate(deg: f64) -> Scene {
+    let mut s = plate(1.0, 1.0, N, N);
+    s.boundary.bottom = SideBc::Roller;
+    s.boundary.left = SideBc::Roller;
+    s.boundary.top = SideBc::Traction {
+        normal: -20e6,
+        shear: 0.0,
+    };
+    s.boundary.right = SideBc::Traction {
+        normal: -5e6,
+        shear: 0.0,
+    };
+    let mut c = centre_crack(0.5033, 0.4971, 0.1, deg);
+    c.friction = 0.3;
+    s.cracks.push(c);
+    s
+}
+
 /// A closed frictional crack under biaxial compression (P_V = 20 MPa,
 /// P_H = 5 MPa, 45°, a = 0.1 m, μ = 0.3, 200 × 200): the faces slip with
 /// σ_n = 12.5 MPa and the friction traction μσ_n = 3.75 MPa. Near the tip the
@@ -65,20 +86,7 @@ fn default_sampling_kinks_by_erdogan_sih_at_any_radius() {
 /// the face normal stress −12.5 MPa ± 4%.
 #[test]
 fn default_sampling_carries_the_face_stress_of_a_closed_crack() {
-    let mut s = plate(1.0, 1.0, N, N);
-    s.boundary.bottom = SideBc::Roller;
-    s.boundary.left = SideBc::Roller;
-    s.boundary.top = SideBc::Traction {
-        normal: -20e6,
-        shear: 0.0,
-    };
-    s.boundary.right = SideBc::Traction {
-        normal: -5e6,
-        shear: 0.0,
-    };
-    let mut c = centre_crack(0.5033, 0.4971, 0.1, 45.0);
-    c.friction = 0.3;
-    s.cracks.push(c);
+    let mut s = closed_crack_plate(45.0);
     // no shear growth: the reported angle is then the σ_θθ peak
     s.material.k_iic = 1e9;
     let sigma_n = 12.5e6;
@@ -147,20 +155,7 @@ fn default_radius_and_strength_follow_the_material() {
 /// σ22 = −16.25 MPa along and across it: T = 7.5 MPa ± 2% at both tips.
 #[test]
 fn interaction_integral_t_of_a_closed_crack_is_sigma11_minus_sigma22() {
-    let mut s = plate(1.0, 1.0, N, N);
-    s.boundary.bottom = SideBc::Roller;
-    s.boundary.left = SideBc::Roller;
-    s.boundary.top = SideBc::Traction {
-        normal: -20e6,
-        shear: 0.0,
-    };
-    s.boundary.right = SideBc::Traction {
-        normal: -5e6,
-        shear: 0.0,
-    };
-    let mut c = centre_crack(0.5033, 0.4971, 0.1, 30.0);
-    c.friction = 0.3;
-    s.cracks.push(c);
+    let s = closed_crack_plate(30.0);
     let report = Simulation::new(s).expect("valid").solve().expect("solve");
     for t in &report.tips {
         assert!(rel(t.t_stress, 7.5e6) < 0.02, "T = {:.4e}", t.t_stress);

@@ -11,7 +11,7 @@
 mod common;
 
 use cdca::report::SolveReport;
-use cdca::scene::{Fix, Plane, PointSupport, SideBc};
+use cdca::scene::Plane;
 use common::*;
 
 const A: f64 = 0.05;
@@ -28,24 +28,8 @@ fn scene(mu: f64) -> cdca::Scene {
     s.material.young = 10e9;
     s.material.poisson = 0.25;
     s.material.plane = Plane::Strain;
-    s.boundary.top = SideBc::Traction {
-        normal: -LOAD,
-        shear: 0.0,
-    };
-    s.boundary.bottom = SideBc::Traction {
-        normal: -LOAD,
-        shear: 0.0,
-    };
-    s.boundary.points = vec![
-        PointSupport {
-            at: [0.0, 0.5 * w],
-            fix: Fix::Xy,
-        },
-        PointSupport {
-            at: [w, 0.5 * w],
-            fix: Fix::Y,
-        },
-    ];
+    // uniaxial compression, rigid motion removed at mid-height
+    tension_top_bottom(&mut s, -LOAD);
     let mut c = centre_crack(0.5 * w, 0.5 * w, A, 90.0 - TO_LOAD_DEG);
     c.friction = mu;
     s.cracks.push(c);

@@ -6,11 +6,10 @@
 //! the tables).
 
 use cdca::contact::iteration::{ContactInfo, ContactParams, relative_change, solve_with_contact};
-use cdca::contact::law::FaceState;
+use cdca::contact::law::{FaceState, face_tractions};
 use cdca::discretisation::model::Model;
 use cdca::discretisation::xfem::Xfem;
 use cdca::fracture::tips::all_tip_sifs;
-use cdca::geometry::plane::P2;
 use cdca::scene::{Scene, SolverKind, SolverSpec};
 use cdca::solvers::choice::{kind_name, make_solver};
 use cdca::solvers::linear::LinearSolver;
@@ -99,13 +98,7 @@ fn solve_status(
 
 /// (K_I, K_II) of every free tip, contact tractions included.
 fn sifs(x: &Xfem, u: &[f64], states: &[FaceState]) -> Vec<(f64, f64)> {
-    let tractions: Vec<P2> = x
-        .faces
-        .iter()
-        .zip(states)
-        .map(|(fp, s)| s.traction(fp))
-        .collect();
-    all_tip_sifs(x, u, &tractions)
+    all_tip_sifs(x, u, &face_tractions(x, states))
         .into_iter()
         .map(|(_, _, _, s)| (s.k1, s.k2))
         .collect()

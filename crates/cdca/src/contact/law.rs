@@ -176,6 +176,16 @@ pub fn contact_system(
 }
 
 /// Counts of points per state.
+/// The traction `p_N n + p_T t` at every face piece of `x` (on the `−`
+/// side; zero where open), one per piece of `x.faces`.
+pub fn face_tractions(x: &Xfem, states: &[FaceState]) -> Vec<P2> {
+    x.faces
+        .iter()
+        .zip(states)
+        .map(|(fp, s)| s.traction(fp))
+        .collect()
+}
+
 pub fn counts(states: &[FaceState]) -> crate::report::ContactCounts {
     let mut c = crate::report::ContactCounts::default();
     for s in states {

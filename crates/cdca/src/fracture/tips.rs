@@ -1,7 +1,7 @@
 //! Evaluation of every free tip after a solve: SIFs by the interaction
 //! integral (with the contact tractions) and the criterion's decision.
 
-use crate::contact::law::{ContactState, FaceState};
+use crate::contact::law::{ContactState, FaceState, face_tractions};
 use crate::discretisation::field::Field;
 use crate::discretisation::xfem::{FacePoint, Xfem};
 use crate::fracture::criterion::{
@@ -55,12 +55,7 @@ pub fn evaluate_tips(
     sampling: Sampling,
 ) -> Evaluation {
     let field = Field { xfem: x, u };
-    let tractions: Vec<P2> = x
-        .faces
-        .iter()
-        .zip(states)
-        .map(|(fp, s)| s.traction(fp))
-        .collect();
+    let tractions = face_tractions(x, states);
     let mut out = Evaluation::default();
     for (c, k, frame, s) in all_tip_sifs(x, u, &tractions) {
         let circle = match sampling {

@@ -215,6 +215,10 @@ impl WorkbenchApp {
     pub fn field_is_shown(&self) -> bool {
         self.runner.field.current().is_some()
     }
+    /// Fraction of the field being sampled, if one is.
+    pub fn field_progress(&self) -> Option<f32> {
+        self.runner.field.progress()
+    }
     /// The solver race, running or finished.
     pub fn race(&self) -> Option<&Race> {
         self.race.as_ref()
@@ -239,14 +243,16 @@ impl WorkbenchApp {
             .map(|f| f.samples.iter().map(|s| s.stress).collect())
             .unwrap_or_default()
     }
-    /// Growth steps done, residual samples of the current solve and its
-    /// last residual: changes whenever the growth run advances.
-    pub fn growth_progress(&self) -> (usize, usize, Option<f64>) {
+    /// Growth steps done, residual samples of the current solve, its last
+    /// residual, and the fraction of a rebuild's integration done: changes
+    /// whenever the growth run advances.
+    pub fn growth_progress(&self) -> (usize, usize, Option<f64>, Option<f64>) {
         let v = &self.runner.view;
         (
             v.history.len(),
             v.residual_samples,
             v.last_residual.map(|r| r.residual),
+            v.rebuild,
         )
     }
     /// The solver growth uses (or will use) on the current simulation.

@@ -84,6 +84,10 @@ pub struct Runner {
     field_version: u64,
     /// When the field last moved to a newer version.
     field_moved_at: Option<Instant>,
+    /// The field moves to the latest version at the next frame, however
+    /// recent the last move: a growth step's solve at λ_cr, shown before
+    /// its tips are extended.
+    show_now: bool,
 }
 
 impl Default for Runner {
@@ -105,6 +109,7 @@ impl Default for Runner {
             one_step_from: 0,
             field_version: 0,
             field_moved_at: None,
+            show_now: false,
         }
     }
 }
@@ -274,12 +279,19 @@ impl Runner {
                     }
                 }
             }
+            if sim.at_critical_load() {
+                // the field of λ_cr is sampled before the tips move on
+                self.show_now = true;
+                break;
+            }
             if self.pace.is_some() {
                 break;
             }
-            // a call of about a quarter of the budget left
+            // no call that would overrun the frame if it took as long as
+            // the last one (setup calls, e.g. a factorisation, come in
+            // runs); sweeps: a call of about a quarter of the budget left
             let now = Instant::now();
-            if now >= deadline {
+            if now + (now - t0) >= deadline {
                 break;
             }
             let per_sweep = (now - t0).as_secs_f64() / n as f64;
@@ -300,6 +312,7 @@ impl Runner {
     pub fn field_version(&mut self) -> u64 {
         let now = Instant::now();
         let due = self.mode == RunMode::Paused
+            || std::mem::take(&mut self.show_now)
             || (self.field.progress().is_none()
                 && self
                     .field_moved_at
@@ -346,6 +359,13 @@ impl Runner {
             RunMode::Growing => self.grow_chunk(deadline, false),
             RunMode::GrowingOne => self.grow_chunk(deadline, true),
         };
+        if let Some(key) = field_key.filter(|_| self.show_now) {
+            // a growth step reached λ_cr: its field, from this frame on
+            let version = self.field_version();
+            if let Some(sim) = &self.sim {
+                self.field.work(sim, FieldKey { version, ..key }, deadline);
+            }
+        }
         self.frame_solver_seconds = start.elapsed().as_secs_f64();
         match outcome {
             Ok(false) => Ok(()),

@@ -38,6 +38,9 @@ pub struct SolutionView {
     pub outcome: Option<Outcome>,
     /// Status of the current relaxation, if one ran.
     pub relax: Option<RelaxStatus>,
+    /// Fraction of the grown tips' elements integrated, while a growth
+    /// step rebuilds the discretisation.
+    pub rebuild: Option<f64>,
 }
 
 impl SolutionView {
@@ -49,6 +52,7 @@ impl SolutionView {
         self.solved = solved;
         self.live = !solved && sim.is_relaxing();
         self.relax = relax;
+        self.rebuild = sim.rebuild_progress();
         self.cracks = sim.cracks();
         self.load_factor = sim.load_factor();
         self.outcome = sim.growth_finished();

@@ -618,8 +618,11 @@ fn relax_with_the_automaton_shows_the_field_before_convergence() {
 
 /// Run growth with an iterative solver (the automaton, which growth
 /// accelerates to multigrid-CG by default): every frame advances the run,
-/// with a new residual sample, a new solve or a new growth step, and the
-/// progress line shows the sweeps and residual.
+/// with a new residual sample, a new solve, a new growth step, a chunk of
+/// the rebuild after growth (the grown tips' elements integrated over
+/// frames) or the field at λ_cr sampled (shown before the tips move on);
+/// every frame outside those two with new residual samples or a new step;
+/// the progress line shows the sweeps and residual, or the rebuild.
 #[test]
 #[cfg_attr(
     debug_assertions,
@@ -635,17 +638,30 @@ fn run_growth_with_an_iterative_solver_advances_every_frame() {
     );
     h.get_by_label("Run growth").click();
     h.run_steps(2);
-    let mut last = h.state().growth_progress();
-    let mut frames = 0;
+    let progress = |h: &Harness<'_, WorkbenchApp>| {
+        let s = h.state();
+        (s.growth_progress(), s.shown_field(), s.field_progress())
+    };
+    let mut last = progress(&h);
+    let (mut frames, mut sweeping) = (0, 0);
     while frames < 60 && h.state().run_mode() == RunMode::Growing {
         h.step();
-        let now = h.state().growth_progress();
+        let now = progress(&h);
         if h.state().run_mode() == RunMode::Growing {
             assert_ne!(now, last, "frame {frames}: the run did not advance");
+            let ((steps, samples, residual, rebuild), field, sampling) = now;
+            let solving = rebuild.is_none() && last.0.3.is_none() && field == last.1;
+            let swept = samples != last.0.1 || residual != last.0.2 || steps != last.0.0;
+            assert!(
+                !solving || sampling.is_some() || swept,
+                "frame {frames}: no new residual sample"
+            );
+            sweeping += usize::from(swept);
         }
         last = now;
         frames += 1;
     }
+    assert!(sweeping > 0, "no residual samples");
     assert!(
         frames >= 10,
         "the run ended after {frames} frames: {:?} {:?}",
@@ -654,6 +670,8 @@ fn run_growth_with_an_iterative_solver_advances_every_frame() {
     );
     assert!(
         h.query_by_label_contains("sweeps, residual").is_some()
+            || h.query_by_label_contains("integrating the grown tips")
+                .is_some()
             || h.state().run_mode() != RunMode::Growing,
         "progress line"
     );

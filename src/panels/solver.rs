@@ -344,6 +344,12 @@ fn status_ui(ui: &mut Ui, v: &AppView) {
 /// step's solve.
 fn growth_progress(view: &crate::solution::SolutionView) -> String {
     let step = view.history.len() + 1;
+    if let Some(done) = view.rebuild {
+        return format!(
+            "step {step}: integrating the grown tips' elements, {:.0}%",
+            100.0 * done
+        );
+    }
     match view.last_residual {
         Some(r) => format!(
             "step {step}, λ = {:.3}, {} sweeps, residual {:.2e}",

@@ -4,7 +4,7 @@
 use nalgebra::DMatrix;
 
 use crate::discretisation::dofs::FIXED;
-use crate::discretisation::xfem::{REGULAR, Xfem};
+use crate::discretisation::xfem::{NOT_INTEGRATED, REGULAR, Xfem};
 
 /// Extra stiffness on one enriched element (contact), in that element's DOF
 /// layout.
@@ -17,6 +17,7 @@ pub struct ElementBlock {
 
 /// `y = K u` element by element (no global matrix).
 pub fn apply(x: &Xfem, extra: &[ElementBlock], u: &[f64], y: &mut [f64]) {
+    assert!(x.is_integrated(), "{NOT_INTEGRATED}");
     y.fill(0.0);
     let get = |d: u32| if d == FIXED { 0.0 } else { u[d as usize] };
     for e in 0..x.mesh.element_count() {

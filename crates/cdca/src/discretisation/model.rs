@@ -57,10 +57,14 @@ impl Model {
 
     /// The discretisation of a crack configuration.
     pub fn discretise(&self, cracks: Vec<Crack>) -> Xfem {
-        self.rediscretise(cracks, None)
+        let mut x = self.rediscretise(cracks, None);
+        x.integrate(usize::MAX);
+        x
     }
 
-    /// The same, reusing what did not change from a previous one.
+    /// The same, reusing what did not change from a previous one; the
+    /// stiffness of the elements that changed is left to
+    /// [`Xfem::integrate`] (see [`Xfem::build`]).
     pub fn rediscretise(&self, cracks: Vec<Crack>, reuse: Option<&Reuse>) -> Xfem {
         Xfem::build(
             self.mesh.clone(),

@@ -8,6 +8,7 @@
 
 use std::cell::OnceCell;
 use std::collections::{BTreeMap, BTreeSet};
+use std::ops::Range;
 
 use nalgebra::{DMatrix, SMatrix};
 
@@ -27,6 +28,10 @@ pub const FACE_ORDER: usize = 2;
 
 /// Marks an element without its own data (an ordinary element).
 pub const REGULAR: u32 = u32::MAX;
+
+/// Panic message for a solver given a discretisation built with
+/// [`Xfem::build`] before [`Xfem::integrate`] completed it.
+pub const NOT_INTEGRATED: &str = "element stiffness not yet integrated (Xfem::integrate)";
 
 /// Settings of the discretisation where SPEC leaves room.
 ///
@@ -177,13 +182,22 @@ pub struct Xfem {
     /// Sparsity pattern and symbolic Cholesky of the stiffness, computed on
     /// first use and shared by every factorisation on this discretisation.
     pattern: OnceCell<Pattern>,
+    /// Slots of enriched elements whose stiffness is still to be integrated
+    /// (see [`build`](Self::build)); empty once usable.
+    unintegrated: Vec<u32>,
+    /// Quadrature points of the last of `unintegrated` already summed.
+    integrated_points: usize,
 }
 
 /// Per element, the `(crack, segment)` pairs whose segment touches it.
 type ElementSegments = BTreeMap<usize, Vec<(usize, usize)>>;
 
 impl Xfem {
-    /// Builds everything for the given cracks (tips already classified).
+    /// Builds everything for the given cracks (tips already classified)
+    /// but the stiffness of the enriched elements that could not be reused
+    /// (the costly part of a rebuild after growth): [`integrate`](Self::integrate)
+    /// computes it, at once or in chunks (so that the workbench can spread a
+    /// rebuild over frames); solvers need it complete.
     pub fn build(
         mesh: Mesh,
         elastic: Elastic,
@@ -211,6 +225,8 @@ impl Xfem {
             enriched: Vec::new(),
             faces: Vec::new(),
             pattern: OnceCell::new(),
+            unintegrated: Vec::new(),
+            integrated_points: 0,
         };
         x.build_elements(&segs, &tips, reuse);
         x.build_faces();
@@ -295,7 +311,7 @@ impl Xfem {
                 !lines.is_empty(),
                 eps,
             );
-            let mut el = EnrichedElement {
+            let el = EnrichedElement {
                 elem: e,
                 enrs,
                 scalars,
@@ -304,8 +320,8 @@ impl Xfem {
                 k: DMatrix::zeros(0, 0),
                 lines,
             };
-            el.k = self.element_stiffness(&el);
             self.slot[e] = self.enriched.len() as u32;
+            self.unintegrated.push(self.slot[e]);
             self.enriched.push(el);
         }
     }
@@ -355,20 +371,70 @@ impl Xfem {
         dofs
     }
 
-    /// `K_e = Σ_q Bᵀ D B w t` over the element's quadrature.
-    fn element_stiffness(&self, el: &EnrichedElement) -> DMatrix<f64> {
+    /// Integrates the stiffness of the enriched elements still without one,
+    /// over at most `max_points` quadrature points (an element may take
+    /// several calls: near a tip one can have 20 000 points); returns
+    /// whether all have their stiffness now.
+    pub fn integrate(&mut self, max_points: usize) -> bool {
+        let mut left = max_points;
+        while left > 0
+            && let Some(&slot) = self.unintegrated.last()
+        {
+            let slot = slot as usize;
+            let (from, n) = (self.integrated_points, self.enriched[slot].qps.len());
+            let to = n.min(from.saturating_add(left));
+            let mut k = if from == 0 {
+                let nd = 2 * self.enriched[slot].scalars.len();
+                DMatrix::zeros(nd, nd)
+            } else {
+                std::mem::take(&mut self.enriched[slot].k)
+            };
+            self.add_stiffness(&self.enriched[slot], from..to, &mut k);
+            self.enriched[slot].k = k;
+            left -= to - from;
+            if to == n {
+                self.unintegrated.pop();
+                self.integrated_points = 0;
+            } else {
+                self.integrated_points = to;
+            }
+        }
+        self.unintegrated.is_empty()
+    }
+
+    /// Whether every element's stiffness is integrated (needed by every
+    /// solver; see [`build`](Self::build)).
+    pub fn is_integrated(&self) -> bool {
+        self.unintegrated.is_empty()
+    }
+
+    /// Quadrature points still to be summed by [`integrate`](Self::integrate).
+    pub fn points_to_integrate(&self) -> usize {
+        self.unintegrated
+            .iter()
+            .map(|&s| self.enriched[s as usize].qps.len())
+            .sum::<usize>()
+            - self.integrated_points
+    }
+
+    /// Whether [`pattern`](Self::pattern) has been computed.
+    pub fn has_pattern(&self) -> bool {
+        self.pattern.get().is_some()
+    }
+
+    /// Adds `Σ_q Bᵀ D B w t` over the element's quadrature points `points`
+    /// to `k` (over all of them: the element stiffness `K_e`).
+    fn add_stiffness(&self, el: &EnrichedElement, points: Range<usize>, k: &mut DMatrix<f64>) {
         let nd = 2 * el.scalars.len();
-        let mut k = DMatrix::zeros(nd, nd);
         let mut b = DMatrix::zeros(3, nd);
         let mut db = DMatrix::zeros(3, nd);
         let (mut vals, mut grads) = (Vec::new(), Vec::new());
-        for q in &el.qps {
+        for q in &el.qps[points] {
             self.eval_enriched(el, q.x, &mut vals, &mut grads);
             fill_b(&grads, &mut b);
             db.gemm(1.0, &self.elastic.d, &b, 0.0);
             k.gemm_tr(q.w * self.thickness, &b, &db, 1.0);
         }
-        k
     }
 
     /// Values and gradients of the scalar shape functions of an enriched
@@ -555,6 +621,7 @@ impl Xfem {
         if let Some(p) = self.pattern.get() {
             return Ok(p);
         }
+        assert!(self.is_integrated(), "{NOT_INTEGRATED}");
         let p = Pattern::new(self.n_free(), self.mesh.element_count() * 36, |push| {
             for e in 0..self.mesh.element_count() {
                 if self.slot[e] == REGULAR {

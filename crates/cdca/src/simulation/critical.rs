@@ -29,6 +29,7 @@ impl Simulation {
             base_faces: vec![FaceState::default(); self.state.faces.len()],
             best: None,
             start: Instant::now(),
+            ended: None,
         });
         self.start_trial(first);
     }
@@ -53,12 +54,27 @@ impl Simulation {
         self.scratch.residual.clear();
     }
 
+    /// Whether the λ_cr search of the step in progress has ended: the state
+    /// is the solve at λ_cr, and the next
+    /// [`advance_growth`](Self::advance_growth) call extends the tips.
+    pub fn at_critical_load(&self) -> bool {
+        self.scratch
+            .critical
+            .as_ref()
+            .is_some_and(|r| r.ended.is_some())
+    }
+
     /// After a trial solve (the state is solved at the trial's λ): the next
-    /// trial, or the step finished (tips extended at λ_cr and recorded).
+    /// trial; or, when the search ends, the state of λ_cr restored (the
+    /// caller may show it) and `None`; or, the call after that, the step
+    /// finished (tips extended at λ_cr and recorded).
     pub(super) fn trial_done(&mut self) -> Option<GrowthStepReport> {
         let mut run = self.scratch.critical.take()?;
         let seconds = run.start.elapsed().as_secs_f64();
         let report = self.report(seconds);
+        if let Some(next) = run.ended {
+            return Some(self.finish_growth_step(&report, run.start, next != Next::Failed));
+        }
         if !report.converged() {
             return Some(self.finish_growth_step(&report, run.start, true));
         }
@@ -77,8 +93,9 @@ impl Simulation {
                 if let Some(best) = run.best.take() {
                     self.restore(best);
                 }
-                let report = self.report(seconds);
-                Some(self.finish_growth_step(&report, run.start, next != Next::Failed))
+                run.ended = Some(next);
+                self.scratch.critical = Some(run);
+                None
             }
         }
     }

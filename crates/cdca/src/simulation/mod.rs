@@ -26,6 +26,7 @@ mod solve;
 mod state;
 mod views;
 
+pub use grow::INTEGRATION_CHUNK;
 pub use initiation::{Initiation, initiation};
 pub use relax::IN_SWEEP_CONTACT_RESIDUAL;
 pub use search::{LAMBDA_TOLERANCE, MAX_TRIALS};

@@ -2,7 +2,7 @@
 //! sweeps per call, so that the workbench can animate the automaton and the
 //! contact states settling without freezing a frame.
 
-use super::job::RelaxJob;
+use super::job::{KeptRelaxation, RelaxJob, kinds};
 use super::state::Simulation;
 use crate::contact::iteration::{
     ContactInfo, FlipTracker, relative_change, settled, update_states,
@@ -25,6 +25,8 @@ impl Simulation {
         self.scratch.job = None;
     }
 
+    /// A job for the contact system of `states`, to be set up by the next
+    /// [`relax`](Self::relax) call (see [`set_up`](Self::set_up)).
     fn new_job(
         &self,
         states: Vec<FaceState>,
@@ -32,7 +34,7 @@ impl Simulation {
         contact_iterations: usize,
         done_iterations: usize,
         done_seconds: f64,
-    ) -> Result<RelaxJob, SolveError> {
+    ) -> RelaxJob {
         let x = &self.scratch.xfem;
         let mut f: Vec<f64> = self
             .scratch
@@ -41,11 +43,11 @@ impl Simulation {
             .map(|v| v * self.state.lambda)
             .collect();
         let blocks = contact_system(x, &states, &self.state.faces, &mut f);
-        let spec = &self.model.scene.solver;
-        let relaxation = Relaxation::new(spec.kind, spec, x, &blocks, &f, &self.state.u)?;
-        Ok(RelaxJob {
-            relaxation,
+        RelaxJob {
+            relaxation: None,
+            f,
             blocks,
+            kinds: kinds(&states),
             states,
             tracker,
             contact_iterations,
@@ -54,7 +56,38 @@ impl Simulation {
             start_u: self.state.u.clone(),
             // later contact iterations do not repeat the iteration-0 sample
             copied: usize::from(done_iterations > 0),
-        })
+        }
+    }
+
+    /// The job's relaxation: the kept one restarted if its contact states
+    /// match (no new factorisation or setup), else a new one.
+    fn set_up(&mut self, job: &RelaxJob) -> Result<Relaxation, SolveError> {
+        if let Some(kept) = self.scratch.kept.take()
+            && kept.kinds == job.kinds
+        {
+            let mut relaxation = kept.relaxation;
+            relaxation.reset(&job.f, &job.start_u)?;
+            return Ok(relaxation);
+        }
+        let spec = &self.model.scene.solver;
+        Relaxation::new(
+            spec.kind,
+            spec,
+            &self.scratch.xfem,
+            &job.blocks,
+            &job.f,
+            &job.start_u,
+        )
+    }
+
+    /// Keeps a finished or replaced job's relaxation for reuse.
+    fn keep(&mut self, job: RelaxJob) {
+        if let Some(relaxation) = job.relaxation {
+            self.scratch.kept = Some(KeptRelaxation {
+                kinds: job.kinds,
+                relaxation,
+            });
+        }
     }
 
     /// Runs at most `max_iterations` sweeps (or iterations) of the solve
@@ -62,6 +95,12 @@ impl Simulation {
     /// if none is under way); cheap enough to call once per frame. When the
     /// linear solve converges, the contact states are updated and, if any
     /// changed, the relaxation continues on the new contact system.
+    ///
+    /// A call sets up at most one linear solver (a factorisation, cells or
+    /// a multigrid hierarchy): a new contact iteration's is set up by the
+    /// next call, or not at all when the last one's contact states match
+    /// (open, stick or slip at every point): the matrix is then the same,
+    /// and only the right-hand side changes.
     ///
     /// The solve ends (`finished`) when the contact states settle, or at a
     /// cap: `solver.max_iterations` sweeps in one contact iteration, or
@@ -71,26 +110,30 @@ impl Simulation {
     /// from it. The tips are evaluated either way.
     pub fn relax(&mut self, max_iterations: usize) -> Result<RelaxStatus, SolveError> {
         if self.scratch.job.is_none() {
+            self.scratch.xfem.integrate(usize::MAX);
             self.scratch.residual.clear();
             let fresh = FlipTracker::new(self.state.faces.len());
             let initial = self.initial_contact_states();
-            self.scratch.job = Some(self.new_job(initial, fresh, 0, 0, 0.0)?);
+            self.scratch.job = Some(self.new_job(initial, fresh, 0, 0, 0.0));
         }
         let Some(mut job) = self.scratch.job.take() else {
             unreachable!("a job was just started")
         };
+        let relaxation = match job.relaxation.take() {
+            Some(r) => r,
+            None => self.set_up(&job)?,
+        };
+        let relaxation = job.relaxation.insert(relaxation);
         let cap = self.model.scene.solver.max_iterations.max(1);
-        let left = cap
-            .saturating_sub(job.relaxation.status().iterations)
-            .max(1);
-        let status = job.relaxation.run(
+        let left = cap.saturating_sub(relaxation.status().iterations).max(1);
+        let status = relaxation.run(
             &self.scratch.xfem,
             &job.blocks,
             max_iterations.min(left),
             &mut |_| {},
         )?;
+        self.state.u.copy_from_slice(relaxation.u());
         self.copy_history(&mut job);
-        self.state.u.copy_from_slice(job.relaxation.u());
         let iterations = job.done_iterations + status.iterations;
         if !status.converged {
             if status.iterations >= cap {
@@ -98,7 +141,7 @@ impl Simulation {
                 let du = relative_change(&self.state.u, &job.start_u);
                 return Ok(self.finish(job, status, false, du, 0));
             }
-            let job = self.contact_inside_sweeps(job, status, iterations)?;
+            let job = self.contact_inside_sweeps(job, status, iterations);
             self.scratch.job = Some(job);
             return Ok(RelaxStatus {
                 iterations,
@@ -124,14 +167,15 @@ impl Simulation {
         if job.contact_iterations >= params.max_contact_iterations() {
             return Ok(self.finish(job, status, false, du, update.violating));
         }
-        let seconds = job.done_seconds + job.relaxation.seconds();
         let next = self.new_job(
-            job.states,
-            job.tracker,
+            job.states.clone(),
+            job.tracker.clone(),
             job.contact_iterations,
             iterations,
-            seconds,
-        )?;
+            job.seconds(),
+        );
+        self.keep(job);
+        // set up by the next call: at most one setup per call
         self.scratch.job = Some(next);
         Ok(RelaxStatus {
             iterations,
@@ -145,7 +189,7 @@ impl Simulation {
     /// cumulative residual history.
     fn copy_history(&mut self, job: &mut RelaxJob) {
         let (iterations, seconds) = (job.done_iterations, job.done_seconds);
-        let history = job.relaxation.history();
+        let history = job.relaxation().history();
         self.scratch
             .residual
             .extend(
@@ -171,7 +215,7 @@ impl Simulation {
         violating: usize,
     ) -> RelaxStatus {
         let iterations = job.done_iterations + status.iterations;
-        self.state.faces = job.states;
+        self.state.faces.clone_from(&job.states);
         self.scratch.contact = ContactInfo {
             iterations: job.contact_iterations.max(1),
             converged: converged && status.converged,
@@ -184,13 +228,14 @@ impl Simulation {
                 residual: status.residual,
                 converged: status.converged,
                 history: job
-                    .relaxation
+                    .relaxation()
                     .history()
                     .iter()
                     .map(|s| s.residual)
                     .collect(),
             },
         };
+        self.keep(job);
         self.state.solved = true;
         self.evaluate();
         RelaxStatus {
@@ -209,14 +254,14 @@ impl Simulation {
     /// displacement. Points that keep flipping are frozen as in the outer
     /// loop. Other solvers keep the outer contact iteration.
     fn contact_inside_sweeps(
-        &self,
+        &mut self,
         job: RelaxJob,
         status: RelaxStatus,
         total: usize,
-    ) -> Result<RelaxJob, SolveError> {
+    ) -> RelaxJob {
         let automaton = self.model.scene.solver.kind == crate::scene::SolverKind::Automaton;
         if !automaton || job.states.is_empty() || status.residual > IN_SWEEP_CONTACT_RESIDUAL {
-            return Ok(job);
+            return job;
         }
         let mut states = job.states.clone();
         let mut tracker = job.tracker.clone();
@@ -229,10 +274,17 @@ impl Simulation {
             self.contact_params(),
         );
         if update.changed == 0 {
-            return Ok(job);
+            return job;
         }
-        let seconds = job.done_seconds + job.relaxation.seconds();
-        self.new_job(states, tracker, job.contact_iterations + 1, total, seconds)
+        let next = self.new_job(
+            states,
+            tracker,
+            job.contact_iterations + 1,
+            total,
+            job.seconds(),
+        );
+        self.keep(job);
+        next
     }
 
     /// Residual samples of the current relaxation.

@@ -182,6 +182,9 @@ pub(super) struct CriticalRun {
     /// The lowest trial so far that meets the criterion.
     pub(super) best: Option<Snapshot>,
     pub(super) start: Instant,
+    /// The search's verdict once it has ended (the state then holds the
+    /// solve at λ_cr, shown before the tips are extended).
+    pub(super) ended: Option<Next>,
 }
 
 #[cfg(test)]

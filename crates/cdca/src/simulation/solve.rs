@@ -20,6 +20,7 @@ impl Simulation {
         self.scratch.job = None;
         self.scratch.growth_start = None;
         let start = Instant::now();
+        self.scratch.xfem.integrate(usize::MAX);
         let f: Vec<f64> = self
             .scratch
             .f_ext

@@ -4,7 +4,7 @@
 
 use web_time::Instant;
 
-use super::job::RelaxJob;
+use super::job::{KeptRelaxation, RelaxJob};
 use super::search::CriticalRun;
 use crate::contact::iteration::{ContactInfo, ContactParams};
 use crate::contact::law::{ContactState, FaceState};
@@ -71,6 +71,11 @@ pub(super) struct Scratch {
     /// [`solve_with_contact_from`](crate::contact::iteration::solve_with_contact_from));
     /// `None` with a new solver or discretisation.
     pub(super) factored: Option<Vec<ContactState>>,
+    /// The last resumable solve's relaxation, for reuse by the next one on
+    /// this discretisation; `None` after a rebuild.
+    pub(super) kept: Option<KeptRelaxation>,
+    /// Quadrature points the last rebuild left to integrate.
+    pub(super) rebuild_points: usize,
 }
 
 impl Simulation {
@@ -99,6 +104,8 @@ impl Simulation {
                 critical: None,
                 contact_guess: None,
                 factored: None,
+                kept: None,
+                rebuild_points: 0,
             },
             state: State {
                 scene,

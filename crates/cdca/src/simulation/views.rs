@@ -101,6 +101,14 @@ impl Simulation {
         self.scratch.job.is_some()
     }
 
+    /// While the stiffness of the elements a growth step changed is being
+    /// integrated (see [`advance_growth`](Self::advance_growth)): the
+    /// fraction done, in [0, 1).
+    pub fn rebuild_progress(&self) -> Option<f64> {
+        let left = self.scratch.xfem.points_to_integrate();
+        (left > 0).then(|| 1.0 - left as f64 / self.scratch.rebuild_points.max(left) as f64)
+    }
+
     /// Crack-face contact points with their state and tractions: those of
     /// the current contact iteration while a relaxation runs, else those of
     /// the last solve.

@@ -11,7 +11,7 @@
 
 use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::dofs::FIXED;
-use crate::discretisation::xfem::{REGULAR, Xfem};
+use crate::discretisation::xfem::{NOT_INTEGRATED, REGULAR, Xfem};
 
 /// Element-by-element operator over `n` DOFs.
 #[derive(Clone, Debug, Default)]
@@ -42,6 +42,7 @@ impl ElementOperator {
     /// The fine operator of a discretisation: `K_bulk + Σ blocks`.
     /// Matrix 0 is the shared ordinary-element stiffness.
     pub fn from_xfem(x: &Xfem, blocks: &[ElementBlock]) -> Self {
+        assert!(x.is_integrated(), "{NOT_INTEGRATED}");
         let mut op = Self::new(x.n_free());
         op.push_matrix(x.k0.as_slice());
         // enriched element `s` gets matrix `1 + s`: its stiffness plus blocks

@@ -2,8 +2,10 @@
 //!
 //! Comprehensive (the paper's): tensile first, `θ0 = argmax σ_θθ(θ, r0)`,
 //! grows in tension if `σ_θθ(θ0) ≥ σ_t`; otherwise shear,
-//! `θ1 = argmax |τ_rθ(θ, r0)|`, grows if `|τ_rθ(θ1)| ≥ max(σ_n, 0) μ_s + c_s`
-//! with `σ_n = −σ_θθ(θ1)` and the envelope of [`ShearStrength`]. MTS (Erdogan–Sih) and its T-stress variant are
+//! `θ1 = argmax |τ_rθ(θ, r0)|` (θ1 = 0 with the faces' envelope, see
+//! [`CriterionParams::shear_envelope`]), grows if
+//! `|τ_rθ(θ1)| ≥ max(σ_n, 0) μ_s + c_s` with `σ_n = −σ_θθ(θ1)` and the
+//! envelope of [`ShearStrength`]. MTS (Erdogan–Sih) and its T-stress variant are
 //! offered for comparison.
 
 use std::f64::consts::PI;
@@ -95,6 +97,14 @@ impl CriterionParams {
     /// load passed about 110 MPa, then turn back ∓90° in tension from the
     /// closed segment that left, so they zig-zagged instead of running
     /// parallel to the load.
+    ///
+    /// For the same reason the `Faces` branch is checked at θ1 = 0, the
+    /// faces extending in their own plane, not at the peak of |τ_rθ|: at a
+    /// closed wing inclined to the load that peak is the bulk's deviatoric
+    /// stress at ±40° (|T|/2 ≈ 40 MPa against a singular K_II/√(2πr0) ≈
+    /// 16 MPa), which met the faces' envelope and turned closed wings ±40°
+    /// in shear, then ∓82° back in tension at a tenth of the load (the
+    /// sliding segment's own wing): a three-step saw-tooth.
     pub fn shear_envelope(&self, faces: Faces) -> Option<(f64, f64)> {
         match self.shear {
             ShearStrength::Faces if !faces.closed => None,
@@ -322,8 +332,15 @@ pub fn assess(
                 return (out, utilisation);
             };
             let abs_tau: Vec<f64> = circle.tau_rt.iter().map(|v| v.abs()).collect();
-            let Some((t1, tau)) = argmax(&circle.theta, &abs_tau) else {
-                return (out, utilisation);
+            // the faces' envelope: their own plane, ahead of the tip (see
+            // `CriterionParams::shear_envelope`)
+            let (t1, tau) = if p.shear == ShearStrength::Faces {
+                (0.0, interpolate(&circle.theta, &abs_tau, 0.0))
+            } else {
+                let Some(peak) = argmax(&circle.theta, &abs_tau) else {
+                    return (out, utilisation);
+                };
+                peak
             };
             let sigma_n = -interpolate(&circle.theta, &circle.sigma_tt, t1);
             out.angle_deg = t1.to_degrees();

@@ -117,13 +117,14 @@ fn own_crossing(crack: &Crack, k: usize, a: P2, b: P2) -> Option<(f64, P2)> {
     best
 }
 
-/// Appends the new point at tip `k`.
+/// Appends the new point at tip `k` (a grown segment).
 pub fn apply(crack: &mut Crack, k: usize, p: P2) {
     if k == 0 {
         crack.points.insert(0, p);
     } else {
         crack.points.push(p);
     }
+    crack.grown[k] += 1;
 }
 
 #[cfg(test)]
@@ -139,6 +140,7 @@ mod tests {
             cohesion: 0.0,
             kn: 1.0,
             kt: 1.0,
+            grown: [0; 2],
         }
     }
 

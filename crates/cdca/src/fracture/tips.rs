@@ -58,7 +58,18 @@ pub fn evaluate_tips(
     let tractions = face_tractions(x, states);
     let mut out = Evaluation::default();
     for (c, k, frame, s) in all_tip_sifs(x, u, &tractions) {
+        let crack = &x.funcs.cracks[c];
+        let faces = Faces {
+            friction: crack.friction,
+            cohesion: crack.cohesion,
+            closed: closed_near_tip(x, states, c, &frame),
+        };
         let circle = match sampling {
+            Sampling::Hybrid if faces.closed && crack.grown[k] > 0 => {
+                // a closed tip of a grown segment: the computed field (see
+                // `Sampling::Hybrid`)
+                sample_field(&frame, params.r0, &|p| field.stress_averaged_at(p))
+            }
             Sampling::Field => sample_field(&frame, params.r0, &|p| field.stress_averaged_at(p)),
             Sampling::Williams => sample_williams(&s, params.r0),
             Sampling::Hybrid => sample_hybrid(
@@ -66,12 +77,6 @@ pub fn evaluate_tips(
                 uniform_stress(&s, face_stress(x, &tractions, c, &frame)),
                 params.r0,
             ),
-        };
-        let crack = &x.funcs.cracks[c];
-        let faces = Faces {
-            friction: crack.friction,
-            cohesion: crack.cohesion,
-            closed: closed_near_tip(x, states, c, &frame),
         };
         let (criterion, utilisation) = assess(params, &circle, &s, faces);
         out.tips.push(TipReport {

@@ -31,6 +31,9 @@ pub struct Crack {
     pub kn: f64,
     /// Tangential stiffness k_T, Pa/m.
     pub kt: f64,
+    /// Number of segments grown at tip 0 (the polyline's first ones) and
+    /// at tip 1 (its last ones); the rest is the crack the scene gives.
+    pub grown: [usize; 2],
 }
 
 impl Crack {
@@ -51,6 +54,7 @@ impl Crack {
             cohesion: spec.cohesion,
             kn,
             kt,
+            grown: [0; 2],
         }
     }
 

@@ -124,7 +124,10 @@ fn main() {
         let started = runner
             .start(
                 canvas,
-                eframe::WebOptions::default(),
+                eframe::WebOptions {
+                    dithering: false,
+                    ..eframe::WebOptions::default()
+                },
                 Box::new(|cc| Ok(Box::new(cdca_workbench::web::WebApp::new(cc)))),
             )
             .await;

@@ -617,21 +617,28 @@ impl Xfem {
     }
 
     /// The stiffness pattern with its symbolic factorisation (computed once).
+    /// Its elements are the regular elements in mesh order, then the
+    /// enriched ones in slot order.
     pub fn pattern(&self) -> Result<&Pattern, SolveError> {
         if let Some(p) = self.pattern.get() {
             return Ok(p);
         }
         assert!(self.is_integrated(), "{NOT_INTEGRATED}");
-        let p = Pattern::new(self.n_free(), self.mesh.element_count() * 36, |push| {
-            for e in 0..self.mesh.element_count() {
-                if self.slot[e] == REGULAR {
-                    push(&self.regular_dofs(e));
-                }
+        let n_elements = self.mesh.element_count();
+        let mut dofs = Vec::with_capacity(8 * n_elements);
+        let mut starts = Vec::with_capacity(n_elements + 1);
+        starts.push(0);
+        for e in 0..n_elements {
+            if self.slot[e] == REGULAR {
+                dofs.extend_from_slice(&self.regular_dofs(e));
+                starts.push(dofs.len());
             }
-            for el in &self.enriched {
-                push(&el.dofs);
-            }
-        })?;
+        }
+        for el in &self.enriched {
+            dofs.extend_from_slice(&el.dofs);
+            starts.push(dofs.len());
+        }
+        let p = Pattern::new(self.n_free(), &dofs, &starts)?;
         Ok(self.pattern.get_or_init(|| p))
     }
 

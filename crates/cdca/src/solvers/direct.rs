@@ -1,78 +1,102 @@
 //! Direct solver: sparse Cholesky (faer, AMD ordering) of the assembled
 //! matrix. The reference for every other solver.
 
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::Llt;
-use faer::{Mat, Side};
+use std::sync::Arc;
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::SparseColMatRef;
+use faer::sparse::linalg::cholesky::LltRef;
+use faer::{Conj, MatMut, Side, Spec, get_global_parallelism};
 
 use crate::discretisation::assembly::ElementBlock;
-use crate::discretisation::dofs::FIXED;
+use crate::discretisation::pattern::Ordered;
 use crate::discretisation::xfem::{REGULAR, Xfem};
 use crate::error::SolveError;
 
 /// A factorised stiffness matrix, reusable for several right-hand sides.
 pub struct Factor {
-    llt: Llt<usize, f64>,
-    n: usize,
+    ordered: Arc<Ordered>,
+    /// The factorised matrix: the values of `ordered.lower`.
+    a: Vec<f64>,
+    /// The values of its Cholesky factor.
+    l: Vec<f64>,
 }
 
 impl Factor {
     /// Assembles and factorises `K` (bulk plus `extra` blocks) into the
     /// discretisation's stiffness pattern, reusing its symbolic factorisation.
     pub fn new(x: &Xfem, extra: &[ElementBlock]) -> Result<Self, SolveError> {
-        let pattern = x.pattern()?;
-        let n = x.n_free();
-        let mut mat = pattern.matrix().clone();
-        let structure = pattern.matrix().symbolic();
-        let (col_ptr, row_idx) = (structure.col_ptr(), structure.row_idx());
-        let vals = mat.val_mut();
-        vals.fill(0.0);
-        let mut add = |dofs: &[u32], k: &dyn Fn(usize, usize) -> f64| {
-            for (j, &dj) in dofs.iter().enumerate() {
-                if dj == FIXED {
-                    continue;
-                }
-                let (a, b) = (col_ptr[dj as usize], col_ptr[dj as usize + 1]);
-                let rows = &row_idx[a..b];
-                for (i, &di) in dofs.iter().enumerate() {
-                    if di == FIXED || di < dj {
-                        continue;
-                    }
-                    let p = rows.binary_search(&(di as usize));
-                    assert!(
-                        p.is_ok(),
-                        "DOF pair ({di}, {dj}) outside the stiffness pattern"
-                    );
-                    if let Ok(p) = p {
-                        vals[a + p] += k(i, j);
-                    }
-                }
-            }
+        let factor = Self {
+            ordered: Arc::clone(x.pattern()?.ordered()),
+            a: Vec::new(),
+            l: Vec::new(),
         };
-        for e in 0..x.mesh.element_count() {
-            if x.slot[e] == REGULAR {
-                add(&x.regular_dofs(e), &|i, j| x.k0[(i, j)]);
+        factor.refactor(x, extra)
+    }
+
+    /// [`Factor::new`] in this factor's storage.
+    pub fn refactor(mut self, x: &Xfem, extra: &[ElementBlock]) -> Result<Self, SolveError> {
+        let pattern = x.pattern()?;
+        self.ordered = Arc::clone(pattern.ordered());
+        let o = &*self.ordered;
+        let n = x.n_free();
+        resize_spare(&mut self.a, o.lower.row_idx().len());
+        self.a.fill(0.0);
+        // the pattern's elements: regular ones in mesh order, then enriched
+        let mut e = 0;
+        for &slot in &x.slot {
+            if slot == REGULAR {
+                pattern.add(e, x.k0.as_slice(), &mut self.a);
+                e += 1;
             }
         }
-        for el in &x.enriched {
-            add(&el.dofs, &|i, j| el.k[(i, j)]);
+        for (s, el) in x.enriched.iter().enumerate() {
+            pattern.add(e + s, el.k.as_slice(), &mut self.a);
         }
         for b in extra {
-            add(&x.enriched[b.slot].dofs, &|i, j| b.k[(i, j)]);
+            pattern.add(e + b.slot, b.k.as_slice(), &mut self.a);
         }
-        let llt = Llt::try_new_with_symbolic(pattern.symbolic().clone(), mat.as_ref(), Side::Lower)
-            .map_err(|e| SolveError::NotPositiveDefinite {
-                dofs: n,
-                detail: format!("{e:?} (a mechanism: check supports, or a singular enrichment)"),
-            })?;
-        Ok(Self { llt, n })
+        // zeroed by the factorisation
+        resize_spare(&mut self.l, o.symbolic.len_val());
+        let par = get_global_parallelism();
+        let not_pd = |detail: String| SolveError::NotPositiveDefinite {
+            dofs: n,
+            detail: format!("{detail} (a mechanism: check supports, or a singular enrichment)"),
+        };
+        let mut mem = MemBuffer::try_new(
+            o.symbolic
+                .factorize_numeric_llt_scratch::<f64>(par, Spec::default()),
+        )
+        .map_err(|e| not_pd(format!("{e:?}")))?;
+        o.symbolic
+            .factorize_numeric_llt(
+                &mut self.l,
+                SparseColMatRef::new(o.lower.as_ref(), &self.a),
+                Side::Lower,
+                LltRegularization::default(),
+                par,
+                MemStack::new(&mut mem),
+                Spec::default(),
+            )
+            .map_err(|e| not_pd(format!("{e:?}")))?;
+        Ok(self)
     }
 
     /// Solves `K u = f`.
     pub fn solve(&self, f: &[f64]) -> Result<Vec<f64>, SolveError> {
-        let mut rhs = Mat::<f64>::from_fn(self.n, 1, |i, _| f[i]);
-        self.llt.solve_in_place(rhs.as_mut());
-        let u: Vec<f64> = (0..self.n).map(|i| rhs[(i, 0)]).collect();
+        let o = &*self.ordered;
+        let n = o.perm.len();
+        let mut y: Vec<f64> = o.perm.iter().map(|&d| f[d]).collect();
+        let par = get_global_parallelism();
+        let mut mem = MemBuffer::new(o.symbolic.solve_in_place_scratch::<f64>(1, par));
+        LltRef::new(&o.symbolic, &self.l).solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(&mut y, n, 1),
+            par,
+            MemStack::new(&mut mem),
+        );
+        let u: Vec<f64> = o.inv.iter().map(|&i| y[i]).collect();
         if let Some(i) = u.iter().position(|v| !v.is_finite()) {
             return Err(SolveError::NonFinite {
                 place: format!("direct solution, DOF {i}"),
@@ -80,4 +104,38 @@ impl Factor {
         }
         Ok(u)
     }
+
+    /// `‖f − K u‖ / ‖f‖` (or ‖K u‖ when f = 0) with the factorised `K`.
+    pub fn relative_residual(&self, f: &[f64], u: &[f64]) -> f64 {
+        let o = &*self.ordered;
+        let (col_ptr, row_idx) = (o.lower.col_ptr(), o.lower.row_idx());
+        let v: Vec<f64> = o.perm.iter().map(|&d| u[d]).collect();
+        let mut r: Vec<f64> = o.perm.iter().map(|&d| f[d]).collect();
+        for (c, &vc) in v.iter().enumerate() {
+            let column = col_ptr[c]..col_ptr[c + 1];
+            let mut sum = 0.0;
+            for (&i, &a) in row_idx[column.clone()].iter().zip(&self.a[column]) {
+                r[i] -= a * vc;
+                if i != c {
+                    sum += a * v[i];
+                }
+            }
+            r[c] -= sum;
+        }
+        let norm = |w: &[f64]| w.iter().map(|a| a * a).sum::<f64>().sqrt();
+        let nf = norm(f);
+        if nf > 0.0 { norm(&r) / nf } else { norm(&r) }
+    }
+}
+
+/// Gives `v` the length `len` (its values unspecified). Factors are large,
+/// kept, and grow a little with the cracks: a new allocation leaves a
+/// sixteenth spare, which lasts several growth steps (fresh memory costs a
+/// page fault per 4 KiB on first touch).
+fn resize_spare(v: &mut Vec<f64>, len: usize) {
+    if v.capacity() < len {
+        *v = Vec::new();
+        v.reserve_exact(len + len / 16);
+    }
+    v.resize(len, 0.0);
 }

@@ -58,13 +58,17 @@ impl LinearSolver for DirectSolver {
         matrix_changed: bool,
     ) -> Result<LinearInfo, SolveError> {
         if matrix_changed || self.factor.is_none() {
-            self.factor = Some(Factor::new(x, blocks)?);
+            // in the last factor's storage (dropped if this fails)
+            self.factor = Some(match self.factor.take() {
+                Some(old) => old.refactor(x, blocks)?,
+                None => Factor::new(x, blocks)?,
+            });
         }
         let Some(factor) = &self.factor else {
             unreachable!("factor was just set")
         };
         *u = factor.solve(f)?;
-        let residual = relative_residual(x, blocks, f, u);
+        let residual = factor.relative_residual(f, u);
         Ok(LinearInfo {
             iterations: 1,
             residual,
@@ -72,18 +76,4 @@ impl LinearSolver for DirectSolver {
             history: vec![residual],
         })
     }
-}
-
-/// `‖f − K u‖ / ‖f‖` (or ‖K u‖ when f = 0).
-pub fn relative_residual(x: &Xfem, blocks: &[ElementBlock], f: &[f64], u: &[f64]) -> f64 {
-    let mut ku = vec![0.0; f.len()];
-    crate::discretisation::assembly::apply(x, blocks, u, &mut ku);
-    let r: f64 = f
-        .iter()
-        .zip(&ku)
-        .map(|(a, b)| (a - b) * (a - b))
-        .sum::<f64>()
-        .sqrt();
-    let nf = f.iter().map(|a| a * a).sum::<f64>().sqrt();
-    if nf > 0.0 { r / nf } else { r }
 }

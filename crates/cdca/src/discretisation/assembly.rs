@@ -8,7 +8,7 @@ use crate::discretisation::xfem::{NOT_INTEGRATED, REGULAR, Xfem};
 
 /// Extra stiffness on one enriched element (contact), in that element's DOF
 /// layout.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct ElementBlock {
     /// Index into [`Xfem::enriched`].
     pub slot: usize,

@@ -320,7 +320,8 @@ impl Simulation {
         self.scratch.rebuild_points = new.points_to_integrate();
         self.scratch.xfem = new;
         self.scratch.job = None;
-        self.scratch.solver = crate::solvers::choice::make_solver(&self.model.scene.solver);
+        // the solver stays (a direct one refactorises into its factors'
+        // storage): with `factored` unknown, its next matrix is a new one
         self.scratch.factored = None;
         self.scratch.kept = None;
         self.state.faces = faces;

@@ -10,7 +10,7 @@ use faer::sparse::linalg::cholesky::LltRef;
 use faer::{Conj, MatMut, Side, Spec, get_global_parallelism};
 
 use crate::discretisation::assembly::ElementBlock;
-use crate::discretisation::pattern::Ordered;
+use crate::discretisation::pattern::{Ordered, Pattern};
 use crate::discretisation::xfem::{REGULAR, Xfem};
 use crate::error::SolveError;
 
@@ -21,6 +21,8 @@ pub struct Factor {
     a: Vec<f64>,
     /// The values of its Cholesky factor.
     l: Vec<f64>,
+    /// The contact blocks assembled into it.
+    blocks: Vec<ElementBlock>,
 }
 
 impl Factor {
@@ -31,6 +33,7 @@ impl Factor {
             ordered: Arc::clone(x.pattern()?.ordered()),
             a: Vec::new(),
             l: Vec::new(),
+            blocks: Vec::new(),
         };
         factor.refactor(x, extra)
     }
@@ -80,7 +83,15 @@ impl Factor {
                 Spec::default(),
             )
             .map_err(|e| not_pd(format!("{e:?}")))?;
+        self.blocks.clear();
+        self.blocks.extend_from_slice(extra);
         Ok(self)
+    }
+
+    /// Whether this is the factor of `K` plus `blocks` on the discretisation
+    /// that owns `pattern` (whose stiffness never changes once built).
+    pub fn is_of(&self, pattern: &Pattern, blocks: &[ElementBlock]) -> bool {
+        Arc::ptr_eq(&self.ordered, pattern.ordered()) && self.blocks == blocks
     }
 
     /// Solves `K u = f`.

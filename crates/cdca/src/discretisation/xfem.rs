@@ -433,7 +433,7 @@ impl Xfem {
             self.eval_enriched(el, q.x, &mut vals, &mut grads);
             fill_b(&grads, &mut b);
             db.gemm(1.0, &self.elastic.d, &b, 0.0);
-            k.gemm_tr(q.w * self.thickness, &b, &db, 1.0);
+            add_bt_db(&mut k, q.w * self.thickness, &grads, &db);
         }
     }
 
@@ -696,6 +696,24 @@ pub fn fill_b(grads: &[P2], b: &mut DMatrix<f64>) {
         b[(0, 2 * s + 1)] = 0.0;
         b[(1, 2 * s + 1)] = g.y;
         b[(2, 2 * s + 1)] = g.x;
+    }
+}
+
+/// `k += alpha Bᵀ DB` for the `B` that [`fill_b`] makes from `grads`: the
+/// sums of nalgebra's `gemm_tr`, in its order, without the products with
+/// `B`'s zeros (which add ±0): a third of the work of an element's
+/// stiffness.
+fn add_bt_db(k: &mut DMatrix<f64>, alpha: f64, grads: &[P2], db: &DMatrix<f64>) {
+    let nd = 2 * grads.len();
+    for (kj, dbj) in k
+        .as_mut_slice()
+        .chunks_exact_mut(nd)
+        .zip(db.as_slice().chunks_exact(3))
+    {
+        for (ks, g) in kj.chunks_exact_mut(2).zip(grads) {
+            ks[0] += alpha * (g.x * dbj[0] + g.y * dbj[2]);
+            ks[1] += alpha * (g.y * dbj[1] + g.x * dbj[2]);
+        }
     }
 }
 

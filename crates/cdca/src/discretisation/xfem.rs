@@ -433,7 +433,7 @@ impl Xfem {
             self.eval_enriched(el, q.x, &mut vals, &mut grads);
             fill_b(&grads, &mut b);
             db.gemm(1.0, &self.elastic.d, &b, 0.0);
-            add_bt_db(&mut k, q.w * self.thickness, &grads, &db);
+            add_bt_db(k, q.w * self.thickness, &grads, &db);
         }
     }
 

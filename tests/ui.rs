@@ -392,7 +392,7 @@ fn grow_makes_the_crack_longer() {
 /// Frame time during Run growth on the default scene (logic + UI on the
 /// CPU, no GPU): `cargo test --release --test ui frame_time -- --nocapture`.
 #[test]
-#[ignore = "a timing measurement, not a test to run on shared machines (bash scripts/frame_times.sh; measured on the default scene, idle 2-core machine: mean 24.6 ms, p95 35-43 ms, max 68-77 ms; the chunk that extends the tips and rebuilds the discretisation is the maximum)"]
+#[ignore = "a timing measurement, not a test to run on shared machines (bash scripts/frame_times.sh; measured on the default scene, 2-core machine at load 1: mean 10.7-10.8 ms, p95 16-18 ms, max 23 ms)"]
 fn frame_time_during_run_growth() {
     let mut h = harness(Options::default());
     h.run_steps(10);
@@ -431,10 +431,11 @@ fn frame_time_during_run_growth() {
     );
     let median = times[n / 2];
     assert!(steps > 0);
-    // Target 33 ms (30 Hz). Growth advances in chunks; the chunk that
-    // extends the tips and rebuilds the discretisation is the longest.
+    // Targets: median 33 ms (30 Hz), worst 50 ms (issue 11). Growth
+    // advances in phases of a few ms; the direct solver's symbolic
+    // factorisation after each rebuild is the longest.
     assert!(median < 0.033, "median frame time {:.1} ms", median * 1e3);
-    assert!(max < 0.15, "max frame time {:.1} ms", max * 1e3);
+    assert!(max < 0.05, "max frame time {:.1} ms", max * 1e3);
 }
 
 fn polyline_length(points: &[[f64; 2]]) -> f64 {

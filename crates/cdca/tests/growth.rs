@@ -356,6 +356,37 @@ fn junctions(sim: &Simulation) -> usize {
         .count()
 }
 
+/// A held-out flaw pair: a 3.4 mm flaw at 50° centred at `centre` (100 ×
+/// 100, product defaults) and a copy shifted by `offset`, m.
+fn flaw_pair(centre: (f64, f64), offset: [f64; 2]) -> Scene {
+    let mut scene = flaw_scene(100, centre, 0.0017, 50.0);
+    let mut second = scene.cracks[0].clone();
+    second.points = second.points.map(|p| {
+        p.iter()
+            .map(|q| [q[0] + offset[0], q[1] + offset[1]])
+            .collect()
+    });
+    scene.cracks.push(second);
+    scene
+}
+
+/// Grows `scene` (at most 30 steps) until a junction forms or growth ends,
+/// asserting that every step converged.
+fn grow_until_junction(name: &str, mut scene: Scene) -> Simulation {
+    scene.growth.max_steps = 30;
+    let mut sim = Simulation::new(scene).expect("valid");
+    while sim.growth_finished().is_none() && junctions(&sim) == 0 {
+        let step = sim.grow_step().expect("step");
+        assert!(
+            step.converged,
+            "{name}: step {} did not converge",
+            step.step
+        );
+    }
+    println!("{name}: junction after {} steps", sim.history().len());
+    sim
+}
+
 /// Coalescence under the product's defaults (critical control, default
 /// criterion): in the bundled stepped flaw pair, and in a held-out stepped
 /// pair (two 3.4 mm flaws at 50°, the upper one 1.2 mm to the right and
@@ -365,24 +396,9 @@ fn junctions(sim: &Simulation) -> usize {
 fn stepped_flaws_coalesce() {
     let text = include_str!("../../../assets/scenes/specimen_two_flaws_stepped.json");
     let bundled = Scene::from_json(text).expect("scene");
-    let mut held_out = flaw_scene(100, (0.01437, 0.01281), 0.0017, 50.0);
-    let mut upper = held_out.cracks[0].clone();
-    upper.points = upper
-        .points
-        .map(|p| p.iter().map(|q| [q[0] + 0.0012, q[1] + 0.0046]).collect());
-    held_out.cracks.push(upper);
-    for (name, mut scene) in [("bundled", bundled), ("held out", held_out)] {
-        scene.growth.max_steps = 30;
-        let mut sim = Simulation::new(scene).expect("valid");
-        while sim.growth_finished().is_none() && junctions(&sim) == 0 {
-            let step = sim.grow_step().expect("step");
-            assert!(
-                step.converged,
-                "{name}: step {} did not converge",
-                step.step
-            );
-        }
-        println!("{name}: junction after {} steps", sim.history().len());
+    let held_out = flaw_pair((0.01437, 0.01281), [0.0012, 0.0046]);
+    for (name, scene) in [("bundled", bundled), ("held out", held_out)] {
+        let sim = grow_until_junction(name, scene);
         assert!(
             junctions(&sim) >= 1,
             "{name}: no junction formed: {:?}",
@@ -408,29 +424,14 @@ fn overlapping_flaws_coalesce() {
     let mut bundled = Scene::from_json(text).expect("scene");
     bundled.mesh.nx = 80;
     bundled.mesh.ny = 80;
-    let mut held_out = flaw_scene(100, (0.01391, 0.01537), 0.0017, 50.0);
-    let mut second = held_out.cracks[0].clone();
-    second.points = second
-        .points
-        .map(|p| p.iter().map(|q| [q[0] + 0.0026, q[1] - 0.0015]).collect());
-    held_out.cracks.push(second);
-    for (name, mut scene) in [("bundled, 80 × 80", bundled), ("held out", held_out)] {
-        scene.growth.max_steps = 30;
+    let held_out = flaw_pair((0.01391, 0.01537), [0.0026, -0.0015]);
+    for (name, scene) in [("bundled, 80 × 80", bundled), ("held out", held_out)] {
         let flaws: Vec<Vec<[f64; 2]>> = scene
             .cracks
             .iter()
             .map(|c| c.points.clone().expect("points"))
             .collect();
-        let mut sim = Simulation::new(scene).expect("valid");
-        while sim.growth_finished().is_none() && junctions(&sim) == 0 {
-            let step = sim.grow_step().expect("step");
-            assert!(
-                step.converged,
-                "{name}: step {} did not converge",
-                step.step
-            );
-        }
-        println!("{name}: junction after {} steps", sim.history().len());
+        let sim = grow_until_junction(name, scene);
         let x = sim.xfem();
         let joined: Vec<(usize, usize, usize)> = x
             .funcs

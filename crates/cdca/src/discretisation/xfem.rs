@@ -623,7 +623,6 @@ impl Xfem {
         if let Some(p) = self.pattern.get() {
             return Ok(p);
         }
-        assert!(self.is_integrated(), "{NOT_INTEGRATED}");
         let n_elements = self.mesh.element_count();
         let mut dofs = Vec::with_capacity(8 * n_elements);
         let mut starts = Vec::with_capacity(n_elements + 1);

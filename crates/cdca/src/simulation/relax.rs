@@ -7,7 +7,7 @@ use super::state::Simulation;
 use crate::contact::iteration::{
     ContactInfo, FlipTracker, relative_change, settled, update_states,
 };
-use crate::contact::law::{FaceState, contact_system};
+use crate::contact::law::{ContactState, FaceState, contact_system};
 use crate::error::SolveError;
 use crate::solvers::linear::LinearInfo;
 use crate::solvers::relaxation::{RelaxStatus, Relaxation, ResidualSample};
@@ -80,13 +80,11 @@ impl Simulation {
         )
     }
 
-    /// Keeps a finished or replaced job's relaxation for reuse.
-    fn keep(&mut self, job: RelaxJob) {
-        if let Some(relaxation) = job.relaxation {
-            self.scratch.kept = Some(KeptRelaxation {
-                kinds: job.kinds,
-                relaxation,
-            });
+    /// Keeps a finished or replaced job's relaxation (set up for the
+    /// contact states `kinds`) for reuse.
+    fn keep(&mut self, kinds: Vec<ContactState>, relaxation: Option<Relaxation>) {
+        if let Some(relaxation) = relaxation {
+            self.scratch.kept = Some(KeptRelaxation { kinds, relaxation });
         }
     }
 
@@ -167,14 +165,15 @@ impl Simulation {
         if job.contact_iterations >= params.max_contact_iterations() {
             return Ok(self.finish(job, status, false, du, update.violating));
         }
+        let seconds = job.seconds();
         let next = self.new_job(
-            job.states.clone(),
-            job.tracker.clone(),
+            job.states,
+            job.tracker,
             job.contact_iterations,
             iterations,
-            job.seconds(),
+            seconds,
         );
-        self.keep(job);
+        self.keep(job.kinds, job.relaxation);
         // set up by the next call: at most one setup per call
         self.scratch.job = Some(next);
         Ok(RelaxStatus {
@@ -215,7 +214,6 @@ impl Simulation {
         violating: usize,
     ) -> RelaxStatus {
         let iterations = job.done_iterations + status.iterations;
-        self.state.faces.clone_from(&job.states);
         self.scratch.contact = ContactInfo {
             iterations: job.contact_iterations.max(1),
             converged: converged && status.converged,
@@ -235,7 +233,8 @@ impl Simulation {
                     .collect(),
             },
         };
-        self.keep(job);
+        self.state.faces = job.states;
+        self.keep(job.kinds, job.relaxation);
         self.state.solved = true;
         self.evaluate();
         RelaxStatus {
@@ -283,7 +282,7 @@ impl Simulation {
             total,
             job.seconds(),
         );
-        self.keep(job);
+        self.keep(job.kinds, job.relaxation);
         next
     }
 

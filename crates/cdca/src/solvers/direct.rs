@@ -11,7 +11,7 @@ use faer::{Conj, MatMut, Side, Spec, get_global_parallelism};
 
 use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::pattern::{Ordered, Pattern};
-use crate::discretisation::xfem::{REGULAR, Xfem};
+use crate::discretisation::xfem::{NOT_INTEGRATED, REGULAR, Xfem};
 use crate::error::SolveError;
 
 /// A factorised stiffness matrix, reusable for several right-hand sides.
@@ -40,6 +40,7 @@ impl Factor {
 
     /// [`Factor::new`] in this factor's storage.
     pub fn refactor(mut self, x: &Xfem, extra: &[ElementBlock]) -> Result<Self, SolveError> {
+        assert!(x.is_integrated(), "{NOT_INTEGRATED}");
         let pattern = x.pattern()?;
         self.ordered = Arc::clone(pattern.ordered());
         let o = &*self.ordered;

@@ -35,7 +35,7 @@ pub use contact::ContactState;
 pub use error::{SceneError, SolveError};
 pub use scene::Scene;
 pub use simulation::{
-    ContactPointView, CriterionCurve, IN_SWEEP_CONTACT_RESIDUAL, INTEGRATION_CHUNK, Initiation,
-    LAMBDA_TOLERANCE, MAX_TRIALS, Simulation, initiation,
+    ContactPointView, CriterionCurve, INTEGRATION_CHUNK, Initiation, LAMBDA_TOLERANCE, MAX_TRIALS,
+    Simulation, initiation,
 };
 pub use solvers::{RelaxStatus, ResidualSample};

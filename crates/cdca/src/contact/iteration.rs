@@ -1,13 +1,16 @@
-//! The contact iteration (SPEC §5): solve, update every face point's state
+//! The contact iteration (SPEC §5), a fixed-point (active-set) loop: solve
+//! the linear system of the current states, update every face point's state
 //! by the return mapping, repeat until no state changes and the
 //! displacement settles. Points that flip state too often are frozen in
 //! their latest state and counted, so the loop always ends with an explicit
-//! status.
+//! status. Resumable ([`ContactSolve`]); the blocking calls loop over it.
 
 use crate::contact::law::{ContactState, FaceState, contact_system, gaps, update_point};
+use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::xfem::Xfem;
 use crate::error::SolveError;
 use crate::solvers::linear::{LinearInfo, LinearSolver};
+use crate::solvers::relaxation::{RelaxStatus, ResidualSample};
 
 /// Settings of the contact iteration.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -57,6 +60,218 @@ pub struct ContactInfo {
     pub last: LinearInfo,
 }
 
+/// The contact iteration as a resumable state machine: each
+/// [`advance`](Self::advance) call runs a slice of the current linear
+/// solve's iterations, after its setup (a factorisation, cells or a
+/// multigrid hierarchy) if it starts one, and ends when a linear solve
+/// ends, so that a call sets up at most one. The contact states are updated only
+/// when a linear solve has finished, so the result does not depend on how
+/// the caller slices the work: [`solve_with_contact_from`] is a loop over
+/// `advance` with no limit, and the workbench calls it a few sweeps a frame.
+///
+/// One contact iteration: assemble the contact system of the current
+/// states (`k_N n⊗n`, `+ k_T t⊗t` at stick, the friction force of slip
+/// points from the last iterate), solve it, update every point by the
+/// return mapping ([`update_states`]); repeat until no state changed and
+/// (with slip points) `‖Δu‖ ≤ tolerance ‖u‖` ([`settled`]), at most
+/// `max_iterations` times.
+pub struct ContactSolve {
+    params: ContactParams,
+    /// The load `λ f_ext` (without contact forces).
+    load: Vec<f64>,
+    states: Vec<FaceState>,
+    tracker: FlipTracker,
+    info: ContactInfo,
+    /// The current contact iteration's system, once assembled.
+    system: Option<System>,
+    /// Displacement at the start of the current contact iteration.
+    before: Vec<f64>,
+    finished: bool,
+    /// Progress samples of the finished contact iterations, then those of
+    /// the current one, with cumulative iterations and times.
+    history: Vec<ResidualSample>,
+    done_iterations: usize,
+    done_seconds: f64,
+}
+
+/// The linear system of one contact iteration.
+struct System {
+    blocks: Vec<ElementBlock>,
+    /// Samples of this solve already copied to the history.
+    copied: usize,
+}
+
+impl ContactSolve {
+    /// A contact iteration on the load `load` (= λ f_ext), started from the
+    /// states `initial` (a guess of which points are open, stuck or
+    /// slipping; the slip history is the `committed` states passed to
+    /// [`advance`](Self::advance)).
+    pub fn new(load: Vec<f64>, initial: Vec<FaceState>, params: ContactParams) -> Self {
+        let n = initial.len();
+        Self {
+            params,
+            load,
+            states: initial,
+            tracker: FlipTracker::new(n),
+            info: ContactInfo::default(),
+            system: None,
+            before: Vec::new(),
+            finished: false,
+            history: Vec::new(),
+            done_iterations: 0,
+            done_seconds: 0.0,
+        }
+    }
+
+    /// Advances the iteration by at most `max_iterations` linear iterations
+    /// (at least one), setting the next linear solve up first if it starts
+    /// one; a call that ends a linear solve updates the contact states and
+    /// returns.
+    ///
+    /// `committed` holds the slip history of the last converged step; `u`
+    /// is the current iterate (the starting guess, then the latest
+    /// iterate, then the result). `factored` holds the contact states
+    /// (open, stick, slip per point) that `solver`'s current matrix was
+    /// built with on this discretisation, or `None` when it has none or
+    /// they are unknown; it is kept up to date. The matrix `K + k_N n⊗n
+    /// (+ k_T t⊗t)` depends on nothing else (not on the load), so a solve
+    /// whose states match it is not set up again: the λ_cr search's trials
+    /// mostly start with the states the last trial ended with (of 231
+    /// factorisations in a 40-step growth run, 123 were these).
+    ///
+    /// Returns the progress; `finished` once the iteration has ended, with
+    /// [`info`](Self::info) saying how.
+    pub fn advance(
+        &mut self,
+        x: &Xfem,
+        committed: &[FaceState],
+        factored: &mut Option<Vec<ContactState>>,
+        u: &mut Vec<f64>,
+        solver: &mut dyn LinearSolver,
+        max_iterations: usize,
+    ) -> Result<RelaxStatus, SolveError> {
+        assert_eq!(
+            self.states.len(),
+            committed.len(),
+            "one state per face point"
+        );
+        if self.finished {
+            return Ok(self.status(true));
+        }
+        let Some(system) = &mut self.system else {
+            let mut f = self.load.clone();
+            let blocks = contact_system(x, &self.states, committed, &mut f);
+            let kinds: Vec<ContactState> = self.states.iter().map(|s| s.state).collect();
+            let matrix_changed = factored.as_ref() != Some(&kinds);
+            // unknown until the setup below has succeeded
+            *factored = None;
+            self.before.clone_from(u);
+            solver.start(x, &blocks, &f, u, matrix_changed)?;
+            *factored = Some(kinds);
+            self.system = Some(System { blocks, copied: 0 });
+            return self.advance(x, committed, factored, u, solver, max_iterations);
+        };
+        let status = solver.run(x, &system.blocks, max_iterations.max(1))?;
+        u.clear();
+        u.extend_from_slice(solver.u());
+        let samples = solver.samples();
+        // later contact iterations do not repeat the iteration-0 sample
+        let later = self.done_iterations > 0;
+        self.history.extend(
+            samples[system.copied.min(samples.len())..]
+                .iter()
+                .filter(|s| !(later && s.iteration == 0))
+                .map(|s| ResidualSample {
+                    iteration: s.iteration + self.done_iterations,
+                    seconds: s.seconds + self.done_seconds,
+                    residual: s.residual,
+                }),
+        );
+        system.copied = samples.len();
+        if !status.finished {
+            return Ok(RelaxStatus {
+                iterations: self.done_iterations + status.iterations,
+                residual: status.residual,
+                converged: false,
+                finished: false,
+            });
+        }
+        // the linear solve has ended: one contact iteration
+        let lin = solver.info();
+        self.done_iterations += lin.iterations;
+        self.done_seconds += samples.last().map_or(0.0, |s| s.seconds);
+        self.info.linear_iterations += lin.iterations;
+        let linear_converged = lin.converged;
+        self.info.last = lin;
+        self.system = None;
+        let it = self.info.iterations + 1;
+        let update = update_states(
+            x,
+            u,
+            committed,
+            &mut self.states,
+            &mut self.tracker,
+            self.params,
+        );
+        self.info.iterations = it;
+        self.info.residual = relative_change(u, &self.before);
+        self.info.violating = update.violating;
+        self.info.cycling = self.tracker.frozen();
+        if !self.info.residual.is_finite() {
+            return Err(SolveError::NonFinite {
+                place: format!("contact iteration {it}"),
+            });
+        }
+        // an unconverged linear solve ends the iteration: states updated
+        // from it mean little, and the status says so
+        if !linear_converged {
+            self.finished = true;
+        } else if settled(&update, &self.states, self.info.residual, self.params) {
+            self.info.converged = update.violating == 0;
+            self.finished = true;
+        } else if it >= self.params.max_contact_iterations() {
+            self.finished = true;
+        }
+        Ok(self.status(self.finished))
+    }
+
+    fn status(&self, finished: bool) -> RelaxStatus {
+        RelaxStatus {
+            iterations: self.done_iterations,
+            residual: self.info.last.residual,
+            converged: finished && self.info.converged,
+            finished,
+        }
+    }
+
+    /// The contact states of the current contact iteration (the result once
+    /// finished).
+    pub fn states(&self) -> &[FaceState] {
+        &self.states
+    }
+
+    /// How the iteration went so far (how it ended, once finished).
+    pub fn info(&self) -> &ContactInfo {
+        &self.info
+    }
+
+    /// Whether the iteration has ended.
+    pub fn is_finished(&self) -> bool {
+        self.finished
+    }
+
+    /// Residual samples of every linear solve so far, with iterations and
+    /// times counted from the start of the contact iteration.
+    pub fn history(&self) -> &[ResidualSample] {
+        &self.history
+    }
+
+    /// The final states and status.
+    pub fn into_result(self) -> (Vec<FaceState>, ContactInfo) {
+        (self.states, self.info)
+    }
+}
+
 /// Solves with contact from the committed states of the last converged
 /// step; returns the new states. `u` is the starting guess and the result.
 pub fn solve_with_contact(
@@ -79,17 +294,9 @@ pub fn solve_with_contact(
     )
 }
 
-/// [`solve_with_contact`] with the iteration started from the states
-/// `initial` (a guess of which points are open, stuck or slipping) instead
-/// of the committed ones; the slip history is still `committed`'s.
-///
-/// `factored` holds the contact states (open, stick, slip per point) that
-/// `solver`'s current matrix was built with on this discretisation, or
-/// `None` when it has none or they are unknown; it is kept up to date.
-/// The matrix `K + k_N n⊗n (+ k_T t⊗t)` depends on nothing else (not on the
-/// load), so a solve whose states match it is not refactorised: the λ_cr
-/// search's trials mostly start with the states the last trial ended with
-/// (of 231 factorisations in a 40-step growth run, 123 were these).
+/// [`solve_with_contact`] started from the states `initial` and with the
+/// solver's current matrix built for `factored` (see
+/// [`ContactSolve::advance`]): [`ContactSolve`] run to its end.
 pub fn solve_with_contact_from(
     x: &Xfem,
     f_ext: &[f64],
@@ -100,45 +307,12 @@ pub fn solve_with_contact_from(
     solver: &mut dyn LinearSolver,
     params: ContactParams,
 ) -> Result<(Vec<FaceState>, ContactInfo), SolveError> {
-    let n = x.faces.len();
-    assert_eq!(initial.len(), n, "one initial state per face point");
-    let mut states = initial;
-    let mut tracker = FlipTracker::new(n);
-    let mut info = ContactInfo::default();
-    for it in 1..=params.max_contact_iterations() {
-        let mut f = f_ext.to_vec();
-        let blocks = contact_system(x, &states, committed, &mut f);
-        let kinds: Vec<ContactState> = states.iter().map(|s| s.state).collect();
-        let matrix_changed = factored.as_ref() != Some(&kinds);
-        // unknown until the solve below has succeeded
-        *factored = None;
-        let before = u.clone();
-        let lin = solver.solve(x, &blocks, &f, u, matrix_changed)?;
-        *factored = Some(kinds);
-        info.linear_iterations += lin.iterations;
-        let linear_converged = lin.converged;
-        info.last = lin;
-        let update = update_states(x, u, committed, &mut states, &mut tracker, params);
-        info.iterations = it;
-        info.residual = relative_change(u, &before);
-        info.violating = update.violating;
-        if !info.residual.is_finite() {
-            return Err(SolveError::NonFinite {
-                place: format!("contact iteration {it}"),
-            });
-        }
-        // an unconverged linear solve ends the iteration: states updated
-        // from it mean little, and the status says so
-        if !linear_converged {
-            break;
-        }
-        if settled(&update, &states, info.residual, params) {
-            info.converged = update.violating == 0;
-            break;
-        }
-    }
-    info.cycling = tracker.frozen();
-    Ok((states, info))
+    let mut iteration = ContactSolve::new(f_ext.to_vec(), initial, params);
+    while !iteration
+        .advance(x, committed, factored, u, solver, usize::MAX)?
+        .finished
+    {}
+    Ok(iteration.into_result())
 }
 
 /// Per point: how often it changed state, and whether it is frozen.

@@ -24,38 +24,17 @@ use crate::scene::{CrackSpec, GrowthControl, SolverKind};
 pub const INTEGRATION_CHUNK: usize = 2_500;
 
 impl Simulation {
-    /// One growth step of SPEC §9: solve at the current load increment,
-    /// evaluate every free tip, extend those that meet the criterion by Δa
-    /// (or, if none does, advance the load factor).
+    /// One growth step of SPEC §9: solve at the current load increment
+    /// (under critical control, at λ_cr), evaluate every free tip, extend
+    /// those that meet the criterion by Δa (or, if none does, advance the
+    /// load factor). [`advance_growth`](Self::advance_growth) run to the
+    /// step's end.
     pub fn grow_step(&mut self) -> Result<GrowthStepReport, SolveError> {
-        if self.state.outcome.is_some() {
-            return Ok(self.state.history.last().cloned().unwrap_or_default());
-        }
-        if self.critical_control() {
-            if self.scratch.critical.is_none() {
-                self.begin_critical();
-            }
-            loop {
-                if !self.at_critical_load() {
-                    self.solve()?;
-                }
-                if let Some(step) = self.trial_done() {
-                    return Ok(step);
-                }
+        loop {
+            if let Some(step) = self.advance_growth(usize::MAX)? {
+                return Ok(step);
             }
         }
-        let start = Instant::now();
-        let lambda = self.increment_load_factor();
-        // a state already solved at this load (e.g. the re-solve after the
-        // last growth) is not solved again
-        let report =
-            if self.state.solved && self.scratch.job.is_none() && lambda == self.state.lambda {
-                self.report(0.0)
-            } else {
-                self.state.lambda = lambda;
-                self.solve()?
-            };
-        Ok(self.finish_growth_step(&report, start, true))
     }
 
     /// Whether the scene asks for critical control (SPEC §9).
@@ -68,9 +47,11 @@ impl Simulation {
         self.state.increment as f64 / self.model.scene.growth.load_steps as f64
     }
 
-    /// The same step as [`grow_step`](Self::grow_step), resumable, in calls
-    /// of a few milliseconds each, so that the workbench grows cracks
-    /// without freezing a frame. Each call does one of:
+    /// One growth step, resumable: in calls of a few milliseconds each when
+    /// `max_iterations` is small, so that the workbench grows cracks
+    /// without freezing a frame; [`grow_step`](Self::grow_step) is a loop
+    /// over it, so the two record the same steps whatever the slicing.
+    /// Each call does one of:
     /// - integrate [`INTEGRATION_CHUNK`] quadrature points of the elements
     ///   the last extension changed;
     /// - for the direct solver, the stiffness pattern and its symbolic
@@ -91,7 +72,7 @@ impl Simulation {
         max_iterations: usize,
     ) -> Result<Option<GrowthStepReport>, SolveError> {
         if self.state.outcome.is_some() {
-            return Ok(self.state.history.last().cloned());
+            return Ok(Some(self.state.history.last().cloned().unwrap_or_default()));
         }
         if !self.prepare_chunk()? {
             return Ok(None);
@@ -323,7 +304,6 @@ impl Simulation {
         // the solver stays (a direct one refactorises into its factors'
         // storage): with `factored` unknown, its next matrix is a new one
         self.scratch.factored = None;
-        self.scratch.kept = None;
         self.state.faces = faces;
         self.state.u = u;
         self.state.solved = false;

@@ -19,7 +19,6 @@
 mod critical;
 mod grow;
 mod initiation;
-mod job;
 mod relax;
 mod search;
 mod solve;
@@ -28,7 +27,6 @@ mod views;
 
 pub use grow::INTEGRATION_CHUNK;
 pub use initiation::{Initiation, initiation};
-pub use relax::IN_SWEEP_CONTACT_RESIDUAL;
 pub use search::{LAMBDA_TOLERANCE, MAX_TRIALS};
 pub use state::Simulation;
 pub use views::{ContactPointView, CriterionCurve};

@@ -5,59 +5,21 @@
 use web_time::Instant;
 
 use super::state::Simulation;
-use crate::contact::iteration::solve_with_contact_from;
-use crate::contact::law::FaceState;
-use crate::contact::law::counts;
+use crate::contact::law::{FaceState, counts};
 use crate::error::SolveError;
 use crate::fracture::tips::evaluate_tips;
 use crate::report::{ContactReport, SolveReport, SolverReport};
-use crate::solvers::relaxation::ResidualSample;
 
 impl Simulation {
     /// Full solve (with contact) at the current load factor with the scene's
-    /// solver; fills SIFs and criterion at every free tip.
+    /// solver; fills SIFs and criterion at every free tip. The resumable
+    /// solve of [`relax`](Self::relax), run to its end.
     pub fn solve(&mut self) -> Result<SolveReport, SolveError> {
-        self.scratch.job = None;
         self.scratch.growth_start = None;
+        self.start_relaxation();
         let start = Instant::now();
-        self.scratch.xfem.integrate(usize::MAX);
-        let f: Vec<f64> = self
-            .scratch
-            .f_ext
-            .iter()
-            .map(|v| v * self.state.lambda)
-            .collect();
-        let params = self.contact_params();
-        let initial = self.initial_contact_states();
-        let (states, info) = solve_with_contact_from(
-            &self.scratch.xfem,
-            &f,
-            &self.state.faces,
-            initial,
-            &mut self.scratch.factored,
-            &mut self.state.u,
-            self.scratch.solver.as_mut(),
-            params,
-        )?;
-        self.state.faces = states;
-        self.scratch.contact = info;
-        self.state.solved = true;
-        self.evaluate();
-        let seconds = start.elapsed().as_secs_f64();
-        self.scratch.residual = self
-            .scratch
-            .contact
-            .last
-            .history
-            .iter()
-            .enumerate()
-            .map(|(i, &r)| ResidualSample {
-                iteration: i + 1,
-                seconds,
-                residual: r,
-            })
-            .collect();
-        Ok(self.report(seconds))
+        while !self.relax(usize::MAX)?.finished {}
+        Ok(self.report(start.elapsed().as_secs_f64()))
     }
 
     /// The states the next contact iteration starts from: the guess left

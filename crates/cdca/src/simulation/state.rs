@@ -4,9 +4,8 @@
 
 use web_time::Instant;
 
-use super::job::{KeptRelaxation, RelaxJob};
 use super::search::CriticalRun;
-use crate::contact::iteration::{ContactInfo, ContactParams};
+use crate::contact::iteration::{ContactInfo, ContactParams, ContactSolve};
 use crate::contact::law::{ContactState, FaceState};
 use crate::discretisation::model::Model;
 use crate::discretisation::xfem::Xfem;
@@ -56,8 +55,8 @@ pub(super) struct Scratch {
     pub(super) tip_faces: Vec<Faces>,
     pub(super) contact: ContactInfo,
     pub(super) residual: Vec<ResidualSample>,
-    /// The resumable solve in progress, if any.
-    pub(super) job: Option<RelaxJob>,
+    /// The solve in progress (the contact iteration), if any.
+    pub(super) job: Option<ContactSolve>,
     /// Start of a resumable growth step in progress.
     pub(super) growth_start: Option<Instant>,
     /// Each free tip's utilisation after the last solve (≥ 1: it grows).
@@ -68,12 +67,9 @@ pub(super) struct Scratch {
     /// guess: the slip history stays `State::faces`); `None`: from those.
     pub(super) contact_guess: Option<Vec<FaceState>>,
     /// The contact states `solver`'s current matrix was built with (see
-    /// [`solve_with_contact_from`](crate::contact::iteration::solve_with_contact_from));
-    /// `None` with a new solver or discretisation.
+    /// [`ContactSolve::advance`]); `None` with a new solver or
+    /// discretisation.
     pub(super) factored: Option<Vec<ContactState>>,
-    /// The last resumable solve's relaxation, for reuse by the next one on
-    /// this discretisation; `None` after a rebuild.
-    pub(super) kept: Option<KeptRelaxation>,
     /// Quadrature points the last rebuild left to integrate.
     pub(super) rebuild_points: usize,
 }
@@ -104,7 +100,6 @@ impl Simulation {
                 critical: None,
                 contact_guess: None,
                 factored: None,
-                kept: None,
                 rebuild_points: 0,
             },
             state: State {

@@ -3,16 +3,16 @@
 //! `cg` (conjugate gradients preconditioned with the automaton's symmetric
 //! sweep) and `multigrid` (CG with a V-cycle whose smoother is that sweep).
 //!
-//! The iterative solvers run a [`Relaxation`] to completion, warm-started
-//! from the `u` they are given; they keep their setup (cells, hierarchy)
-//! while the matrix is unchanged.
+//! The iterative solvers run a [`Relaxation`], warm-started from the `u`
+//! they are given; they keep their setup (cells, hierarchy) while the
+//! matrix is unchanged.
 
 use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::xfem::Xfem;
 use crate::error::SolveError;
 use crate::scene::{SolverKind, SolverSpec};
 use crate::solvers::linear::{DirectSolver, LinearInfo, LinearSolver};
-use crate::solvers::relaxation::Relaxation;
+use crate::solvers::relaxation::{RelaxStatus, Relaxation, ResidualSample};
 
 /// The solver the scene asks for.
 pub fn make_solver(spec: &SolverSpec) -> Box<dyn LinearSolver> {
@@ -32,7 +32,9 @@ pub fn kind_name(kind: SolverKind) -> &'static str {
     }
 }
 
-/// An iterative solver behind the [`LinearSolver`] trait.
+/// An iterative solver behind the [`LinearSolver`] trait: a
+/// [`Relaxation`] capped at `solver.max_iterations` per solve, kept (cells,
+/// hierarchy) while the matrix is unchanged.
 pub struct IterativeSolver {
     kind: SolverKind,
     spec: SolverSpec,
@@ -47,6 +49,12 @@ impl IterativeSolver {
             relaxation: None,
         }
     }
+
+    fn relaxation(&self) -> &Relaxation {
+        self.relaxation
+            .as_ref()
+            .expect("an iterative solve is started before it runs")
+    }
 }
 
 impl LinearSolver for IterativeSolver {
@@ -54,32 +62,67 @@ impl LinearSolver for IterativeSolver {
         kind_name(self.kind)
     }
 
-    fn solve(
+    fn start(
         &mut self,
         x: &Xfem,
         blocks: &[ElementBlock],
         f: &[f64],
-        u: &mut Vec<f64>,
+        u0: &[f64],
         matrix_changed: bool,
-    ) -> Result<LinearInfo, SolveError> {
-        if u.len() != x.n_free() {
-            *u = vec![0.0; x.n_free()];
-        }
-        let relaxation = match &mut self.relaxation {
-            Some(r) if !matrix_changed && r.operator().n == x.n_free() => {
-                r.reset(f, u)?;
-                r
-            }
-            slot => slot.insert(Relaxation::new(self.kind, &self.spec, x, blocks, f, u)?),
+    ) -> Result<(), SolveError> {
+        let n = x.n_free();
+        let zero;
+        let u0 = if u0.len() == n {
+            u0
+        } else {
+            zero = vec![0.0; n];
+            &zero
         };
-        let status = relaxation.run(x, blocks, self.spec.max_iterations, &mut |_| {})?;
-        // capped or not, the caller gets the last iterate and the status
-        u.copy_from_slice(relaxation.u());
-        Ok(LinearInfo {
+        match &mut self.relaxation {
+            Some(r) if !matrix_changed && r.operator().n == n => r.reset(f, u0),
+            slot => {
+                *slot = Some(Relaxation::new(self.kind, &self.spec, x, blocks, f, u0)?);
+                Ok(())
+            }
+        }
+    }
+
+    fn run(
+        &mut self,
+        x: &Xfem,
+        blocks: &[ElementBlock],
+        max_iterations: usize,
+    ) -> Result<RelaxStatus, SolveError> {
+        let cap = self.spec.max_iterations.max(1);
+        let relaxation = self
+            .relaxation
+            .as_mut()
+            .expect("an iterative solve is started before it runs");
+        let left = cap.saturating_sub(relaxation.status().iterations);
+        let status = relaxation.run(x, blocks, max_iterations.min(left), &mut |_| {})?;
+        // capped or not, the last iterate stays and the status says so
+        Ok(RelaxStatus {
+            finished: status.converged || status.iterations >= cap,
+            ..status
+        })
+    }
+
+    fn u(&self) -> &[f64] {
+        self.relaxation().u()
+    }
+
+    fn info(&self) -> LinearInfo {
+        let r = self.relaxation();
+        let status = r.status();
+        LinearInfo {
             iterations: status.iterations,
             residual: status.residual,
             converged: status.converged,
-            history: relaxation.history().iter().map(|s| s.residual).collect(),
-        })
+            history: r.history().iter().map(|s| s.residual).collect(),
+        }
+    }
+
+    fn samples(&self) -> &[ResidualSample] {
+        self.relaxation().history()
     }
 }

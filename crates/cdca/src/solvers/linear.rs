@@ -1,10 +1,17 @@
 //! The linear solvers of one operator `(K + K_contact) u = f` (SPEC §6),
-//! behind one trait so that the contact iteration and the app can use any.
+//! behind one resumable trait so that the contact iteration runs any of
+//! them in slices of any size: [`LinearSolver::start`] sets a solve up (at
+//! most one factorisation, set of cells or hierarchy),
+//! [`LinearSolver::run`] advances it by a few iterations, and the blocking
+//! [`LinearSolver::solve`] is a loop over the two.
+
+use web_time::Instant;
 
 use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::xfem::Xfem;
 use crate::error::SolveError;
 use crate::solvers::direct::Factor;
+use crate::solvers::relaxation::{RelaxStatus, ResidualSample};
 
 /// What one linear solve did.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -18,15 +25,49 @@ pub struct LinearInfo {
     pub history: Vec<f64>,
 }
 
-/// A solver of the assembled-or-not operator.
+/// A resumable solver of the assembled-or-not operator.
 pub trait LinearSolver {
     /// Name as in the scene's `solver.kind`.
     fn name(&self) -> &'static str;
-    /// Solves `(K + blocks) u = f`, starting from `u` (a warm start for
-    /// iterative solvers). `matrix_changed` is false when only `f` changed
-    /// since the last call on the same discretisation. An iterative solve
-    /// that stops at its iteration cap is not an error: it leaves the last
-    /// iterate in `u` and says `converged: false` with its residual.
+
+    /// Starts a solve of `(K + blocks) u = f` from `u0` (a warm start for
+    /// iterative solvers; zero when its length does not match).
+    /// `matrix_changed` is false when only `f` changed since the last solve
+    /// on the same discretisation: the setup (factorisation, cells,
+    /// hierarchy) is then kept.
+    fn start(
+        &mut self,
+        x: &Xfem,
+        blocks: &[ElementBlock],
+        f: &[f64],
+        u0: &[f64],
+        matrix_changed: bool,
+    ) -> Result<(), SolveError>;
+
+    /// Runs at most `max_iterations` more iterations of the started solve.
+    /// It has `finished` when it converged or reached the solver's
+    /// iteration cap (`solver.max_iterations`; then `converged: false`,
+    /// which is not an error: the last iterate stays in [`u`](Self::u)).
+    fn run(
+        &mut self,
+        x: &Xfem,
+        blocks: &[ElementBlock],
+        max_iterations: usize,
+    ) -> Result<RelaxStatus, SolveError>;
+
+    /// The current iterate (the solution once finished and converged).
+    fn u(&self) -> &[f64];
+
+    /// The started solve so far.
+    fn info(&self) -> LinearInfo;
+
+    /// Progress samples of the started solve with their times, s (setup
+    /// included).
+    fn samples(&self) -> &[ResidualSample];
+
+    /// The whole solve at once: [`start`](Self::start), then
+    /// [`run`](Self::run) until it has finished; `u` is the starting guess
+    /// and the result.
     fn solve(
         &mut self,
         x: &Xfem,
@@ -34,7 +75,13 @@ pub trait LinearSolver {
         f: &[f64],
         u: &mut Vec<f64>,
         matrix_changed: bool,
-    ) -> Result<LinearInfo, SolveError>;
+    ) -> Result<LinearInfo, SolveError> {
+        self.start(x, blocks, f, u, matrix_changed)?;
+        while !self.run(x, blocks, usize::MAX)?.finished {}
+        u.clear();
+        u.extend_from_slice(self.u());
+        Ok(self.info())
+    }
 }
 
 /// Factors a [`DirectSolver`] keeps: the current one and the one before.
@@ -46,11 +93,18 @@ const KEPT_FACTORS: usize = 2;
 
 /// Sparse Cholesky, refactorised only when the matrix changed (the
 /// symbolic factorisation is the discretisation's, computed once), and not
-/// even then when it is the matrix of a kept factor.
+/// even then when it is the matrix of a kept factor. One
+/// [`run`](LinearSolver::run) iteration is the triangular solves.
 #[derive(Default)]
 pub struct DirectSolver {
     /// The last factors, the current one first.
     factors: Vec<Factor>,
+    f: Vec<f64>,
+    u: Vec<f64>,
+    status: RelaxStatus,
+    samples: Vec<ResidualSample>,
+    /// Setup time of the started solve, s.
+    setup_seconds: f64,
 }
 
 impl LinearSolver for DirectSolver {
@@ -58,14 +112,15 @@ impl LinearSolver for DirectSolver {
         "direct"
     }
 
-    fn solve(
+    fn start(
         &mut self,
         x: &Xfem,
         blocks: &[ElementBlock],
         f: &[f64],
-        u: &mut Vec<f64>,
+        u0: &[f64],
         matrix_changed: bool,
-    ) -> Result<LinearInfo, SolveError> {
+    ) -> Result<(), SolveError> {
+        let clock = Instant::now();
         if matrix_changed || self.factors.is_empty() {
             let pattern = x.pattern()?;
             if let Some(i) = self.factors.iter().position(|k| k.is_of(pattern, blocks)) {
@@ -82,14 +137,60 @@ impl LinearSolver for DirectSolver {
                 self.factors.insert(0, factor);
             }
         }
-        let factor = &self.factors[0];
-        *u = factor.solve(f)?;
-        let residual = factor.relative_residual(f, u);
-        Ok(LinearInfo {
+        self.f.clear();
+        self.f.extend_from_slice(f);
+        self.u.clear();
+        self.u.extend_from_slice(u0);
+        self.status = RelaxStatus::default();
+        self.samples.clear();
+        self.setup_seconds = clock.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    fn run(
+        &mut self,
+        _x: &Xfem,
+        _blocks: &[ElementBlock],
+        max_iterations: usize,
+    ) -> Result<RelaxStatus, SolveError> {
+        if self.status.finished || max_iterations == 0 {
+            return Ok(self.status);
+        }
+        let clock = Instant::now();
+        let factor = self
+            .factors
+            .first()
+            .expect("a direct solve is started before it runs");
+        self.u = factor.solve(&self.f)?;
+        let residual = factor.relative_residual(&self.f, &self.u);
+        self.status = RelaxStatus {
             iterations: 1,
             residual,
             converged: true,
-            history: vec![residual],
-        })
+            finished: true,
+        };
+        self.samples.push(ResidualSample {
+            iteration: 1,
+            seconds: self.setup_seconds + clock.elapsed().as_secs_f64(),
+            residual,
+        });
+        Ok(self.status)
+    }
+
+    fn u(&self) -> &[f64] {
+        &self.u
+    }
+
+    fn info(&self) -> LinearInfo {
+        LinearInfo {
+            iterations: self.status.iterations,
+            residual: self.status.residual,
+            converged: self.status.converged,
+            history: self.samples.iter().map(|s| s.residual).collect(),
+        }
+    }
+
+    fn samples(&self) -> &[ResidualSample] {
+        &self.samples
     }
 }

@@ -56,6 +56,37 @@ impl Default for FaceState {
 }
 
 impl FaceState {
+    /// The state as `growth.resume` stores it (see
+    /// [`Resume`](crate::scene::Resume)): `[state, g_T^s, g_N, g_T, p_N,
+    /// p_T]`, state 0 open, 1 stick, 2 slip.
+    pub fn saved(&self) -> [f64; 6] {
+        let state = match self.state {
+            ContactState::Open => 0.0,
+            ContactState::Stick => 1.0,
+            ContactState::Slip => 2.0,
+        };
+        [state, self.slip, self.g_n, self.g_t, self.p_n, self.p_t]
+    }
+
+    /// The state of a `growth.resume` entry (see [`saved`](Self::saved)).
+    pub fn restored(f: &[f64; 6]) -> Self {
+        let state = if f[0] == 2.0 {
+            ContactState::Slip
+        } else if f[0] == 1.0 {
+            ContactState::Stick
+        } else {
+            ContactState::Open
+        };
+        Self {
+            state,
+            slip: f[1],
+            g_n: f[2],
+            g_t: f[3],
+            p_n: f[4],
+            p_t: f[5],
+        }
+    }
+
     /// Traction vector `p_N n + p_T t` that the `−` side exerts against
     /// the `+` side's motion (zero when open).
     pub fn traction(&self, fp: &FacePoint) -> P2 {

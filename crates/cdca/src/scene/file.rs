@@ -295,6 +295,9 @@ pub struct GrowthSpec {
     /// exceed this factor of the scene's loads.
     #[serde(default = "default_max_load_factor")]
     pub max_load_factor: f64,
+    /// Where a run saved mid-way stands; `None` in a scene not yet grown.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub resume: Option<super::Resume>,
 }
 
 impl Default for GrowthSpec {
@@ -306,6 +309,7 @@ impl Default for GrowthSpec {
             max_steps: default_max_steps(),
             control: GrowthControl::default(),
             max_load_factor: default_max_load_factor(),
+            resume: None,
         }
     }
 }

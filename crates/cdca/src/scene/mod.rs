@@ -7,6 +7,7 @@
 
 mod file;
 mod param;
+mod resume;
 mod validate;
 
 pub use file::{
@@ -14,4 +15,5 @@ pub use file::{
     Material, MeshSpec, Ordering, Plane, PointSupport, Sampling, Scene, ShearStrength, SideBc,
     SolverKind, SolverSpec, Specimen,
 };
+pub use resume::Resume;
 pub use validate::MAX_ELEMENTS;

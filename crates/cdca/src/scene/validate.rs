@@ -158,6 +158,9 @@ impl Scene {
         at_least_one("growth.max_steps", g.max_steps)?;
         at_least_one("growth.max_growth_per_step", g.max_growth_per_step)?;
         positive("growth.max_load_factor", g.max_load_factor)?;
+        if let Some(r) = &g.resume {
+            r.validate()?;
+        }
         let s = &self.solver;
         open_interval("solver.tolerance", s.tolerance, 0.0, 1.0)?;
         at_least_one("solver.max_iterations", s.max_iterations)?;

@@ -19,10 +19,21 @@ impl Simulation {
     }
 
     /// Starts a critical-control step: the first trial at the last step's
-    /// λ_cr (warm start), or at the scene's load (λ = 1) at the first step.
+    /// λ_cr (warm start; `growth.resume.load_factor` in a scene saved
+    /// mid-run), or at the scene's load (λ = 1) at the first step.
     pub(super) fn begin_critical(&mut self) {
         let g = &self.model.scene.growth;
-        let warm = self.state.history.last().map_or(1.0, |s| s.load_factor);
+        let resumed = self.state.steps_before > 0 && self.state.lambda > 0.0;
+        let warm = self
+            .state
+            .history
+            .last()
+            .map_or(if resumed { self.state.lambda } else { 1.0 }, |s| {
+                s.load_factor
+            });
+        // every step starts from what the scene carries (`growth.resume`):
+        // no displacement, the contact states as they are
+        self.state.u.fill(0.0);
         let first = warm.min(g.max_load_factor);
         self.scratch.critical = Some(CriticalRun {
             search: Search::new(g.max_load_factor),

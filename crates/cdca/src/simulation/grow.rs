@@ -5,8 +5,8 @@
 use web_time::Instant;
 
 use super::state::Simulation;
+use crate::contact::law::FaceState;
 use crate::contact::law::{carry_over, counts};
-use crate::discretisation::dofs::FIXED;
 use crate::discretisation::xfem::Reuse;
 use crate::error::SolveError;
 use crate::fracture::growth::{apply, default_increment, extend};
@@ -15,7 +15,7 @@ use crate::geometry::plane::P2;
 use crate::report::{
     ContactCounts, GrownTip, GrowthStepReport, Mode, Outcome, SolveReport, TipReport,
 };
-use crate::scene::{CrackSpec, GrowthControl, SolverKind};
+use crate::scene::{CrackSpec, GrowthControl, Resume, SolverKind};
 
 /// Quadrature points whose stiffness contributions one
 /// [`Simulation::advance_growth`] call sums after a rebuild: about 4 ms
@@ -93,6 +93,9 @@ impl Simulation {
             let lambda = self.increment_load_factor();
             if lambda != self.state.lambda || !self.state.solved {
                 self.set_load_factor(lambda);
+                // every step starts from what the scene carries
+                // (`growth.resume`): no displacement
+                self.state.u.fill(0.0);
                 self.start_relaxation();
             }
             let t = Instant::now();
@@ -164,7 +167,7 @@ impl Simulation {
             .cloned()
             .collect();
         let mut step = GrowthStepReport {
-            step: self.state.history.len() + 1,
+            step: self.state.steps_before + self.state.history.len() + 1,
             load_factor: self.state.lambda,
             grown: Vec::new(),
             contact: ContactCounts {
@@ -220,7 +223,20 @@ impl Simulation {
         step.crack_length = self.state.cracks.iter().map(Crack::length).sum();
         step.seconds = start.elapsed().as_secs_f64();
         self.state.history.push(step.clone());
+        self.state.scene.growth.resume = Some(self.resume(step.step));
         step
+    }
+
+    /// Where the run stands after `steps` steps, for the simulated scene
+    /// ([`Resume`]): the next step starts from exactly this.
+    fn resume(&self, steps: usize) -> Resume {
+        Resume {
+            steps,
+            load_factor: self.state.lambda,
+            increment: self.state.increment,
+            growths_here: self.state.growths_here,
+            faces: self.state.faces.iter().map(FaceState::saved).collect(),
+        }
     }
 
     /// Extends the growing tips (all from the same solution) and rebuilds
@@ -286,16 +302,6 @@ impl Simulation {
             &new.faces,
             self.model.mesh.h(),
         );
-        let mut u = vec![0.0; new.n_free()];
-        let old = &self.scratch.xfem.dofs;
-        for n in 0..self.model.mesh.node_count() {
-            for c in 0..2 {
-                let (a, b) = (old.std_free(n, c), new.dofs.std_free(n, c));
-                if a != FIXED && b != FIXED {
-                    u[b as usize] = self.state.u[a as usize];
-                }
-            }
-        }
         self.scratch.f_ext =
             crate::discretisation::loads::traction_forces(&new, &self.model.scene.boundary);
         self.scratch.rebuild_points = new.points_to_integrate();
@@ -305,7 +311,8 @@ impl Simulation {
         // storage): with `factored` unknown, its next matrix is a new one
         self.scratch.factored = None;
         self.state.faces = faces;
-        self.state.u = u;
+        // the next step starts from no displacement (see `Resume`)
+        self.state.u = vec![0.0; self.scratch.xfem.n_free()];
         self.state.solved = false;
         self.state.scene.cracks = self
             .state

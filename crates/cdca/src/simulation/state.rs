@@ -9,7 +9,7 @@ use crate::contact::iteration::{ContactInfo, ContactParams, ContactSolve};
 use crate::contact::law::{ContactState, FaceState};
 use crate::discretisation::model::Model;
 use crate::discretisation::xfem::Xfem;
-use crate::error::SolveError;
+use crate::error::{SceneError, SolveError};
 use crate::fracture::criterion::{Circle, CriterionParams, Faces};
 use crate::geometry::cracks::Crack;
 use crate::report::{GrowthStepReport, Outcome, TipReport};
@@ -42,6 +42,8 @@ pub(super) struct State {
     /// Load increment (1-based) the growth loop is at, and growths there.
     pub(super) increment: usize,
     pub(super) growths_here: usize,
+    /// Growth steps done before this simulation (`growth.resume.steps`).
+    pub(super) steps_before: usize,
 }
 
 /// Derived data, rebuilt from model and state; never serialised.
@@ -84,6 +86,19 @@ impl Simulation {
         let f_ext = crate::discretisation::loads::traction_forces(&xfem, &scene.boundary);
         let n = xfem.n_free();
         let nf = xfem.faces.len();
+        let resume = scene.growth.resume.clone();
+        let faces = match &resume {
+            Some(r) if r.faces.len() == nf => r.faces.iter().map(FaceState::restored).collect(),
+            Some(r) => {
+                return Err(SceneError::invalid(
+                    "growth.resume.faces",
+                    format!("{} entries", r.faces.len()),
+                    format!("the cracks have {nf} face points"),
+                )
+                .into());
+            }
+            None => vec![FaceState::default(); nf],
+        };
         Ok(Self {
             scratch: Scratch {
                 xfem,
@@ -105,14 +120,15 @@ impl Simulation {
             state: State {
                 scene,
                 cracks,
-                lambda: 1.0,
+                lambda: resume.as_ref().map_or(1.0, |r| r.load_factor),
                 u: vec![0.0; n],
-                faces: vec![FaceState::default(); nf],
+                faces,
                 solved: false,
                 history: Vec::new(),
                 outcome: None,
-                increment: 1,
-                growths_here: 0,
+                increment: resume.as_ref().map_or(1, |r| r.increment),
+                growths_here: resume.as_ref().map_or(0, |r| r.growths_here),
+                steps_before: resume.as_ref().map_or(0, |r| r.steps),
             },
             model,
         })

@@ -5,8 +5,7 @@
 use web_time::Instant;
 
 use super::state::Simulation;
-use crate::contact::law::FaceState;
-use crate::contact::law::{carry_over, counts};
+use crate::contact::law::{FaceState, carry_over, counts};
 use crate::discretisation::xfem::Reuse;
 use crate::error::SolveError;
 use crate::fracture::growth::{apply, default_increment, extend};

@@ -542,3 +542,36 @@ fn a_scene_saved_mid_growth_grows_the_same_next_steps() {
         assert_eq!(a.cracks(), b.cracks());
     }
 }
+
+/// After growth has ended the final cracks can be solved at the last
+/// step's load factor (what the workbench shows at the end of a run): the
+/// state is solved at exactly that load, and it is the geometry the last
+/// step reported. Held-out flaw, 40 × 40, grown until λ_cr would pass
+/// `max_load_factor` (`completed`): nothing grew at the last step, so the
+/// final solve's K equal that step's (1e-6 relative; the contact iteration
+/// starts from other states, so not to the bit).
+#[test]
+fn the_end_of_a_run_is_solved_at_the_last_load() {
+    let mut sim = Simulation::new(flaw_scene(40, (0.0151, 0.0148), 0.002, 35.0)).expect("valid");
+    assert_eq!(sim.start_final_solve(), None, "growth has not ended");
+    while sim.growth_finished().is_none() {
+        sim.grow_step().expect("step");
+    }
+    assert_eq!(
+        sim.growth_finished(),
+        Some(cdca::report::Outcome::Completed)
+    );
+    let last = sim.history().last().expect("steps").clone();
+    assert_eq!(sim.start_final_solve(), Some(last.load_factor));
+    let report = sim.solve().expect("the final geometry solves");
+    assert!(sim.is_solved() && report.converged());
+    assert_eq!(sim.load_factor(), last.load_factor);
+    assert!(!report.tips.is_empty() && report.tips.len() == last.tips.len());
+    for (a, b) in report.tips.iter().zip(&last.tips) {
+        let scale = b.k1.abs().max(b.k2.abs());
+        assert!(
+            (a.k1 - b.k1).abs() < 1e-6 * scale && (a.k2 - b.k2).abs() < 1e-6 * scale,
+            "{a:?} vs {b:?}"
+        );
+    }
+}

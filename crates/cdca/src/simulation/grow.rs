@@ -326,6 +326,25 @@ impl Simulation {
             .collect();
     }
 
+    /// After growth has ended: the final cracks at the last step's load
+    /// factor (λ_cr under critical control), set up to be solved by the
+    /// next [`relax`](Self::relax) calls or [`solve`](Self::solve), so that
+    /// the state shown at the end is the final geometry at the load the
+    /// history prints. Returns that load factor, or `None` when growth has
+    /// not ended or no step was recorded. A specimen cut in two has no
+    /// stiffness against the rigid motion of a piece: its solve then fails
+    /// with [`SolveError::NotPositiveDefinite`].
+    pub fn start_final_solve(&mut self) -> Option<f64> {
+        self.state.outcome?;
+        let lambda = self.state.history.last()?.load_factor;
+        self.state.lambda = lambda;
+        self.state.solved = false;
+        self.state.u.fill(0.0);
+        self.scratch.critical = None;
+        self.start_relaxation();
+        Some(lambda)
+    }
+
     /// Growth history so far.
     pub fn history(&self) -> &[GrowthStepReport] {
         &self.state.history

@@ -31,7 +31,6 @@ impl RaceSystem {
     /// The scene at full load with its contact states settled by the
     /// direct solver from the scene's own (open) states.
     pub fn settle(scene: &Scene, params: ContactParams) -> Result<Self, SolveError> {
-        scene.validate()?;
         let model = Model::new(scene.clone());
         let settling = model.discretise(model.initial_cracks());
         let f_ext = traction_forces(&settling, &scene.boundary);

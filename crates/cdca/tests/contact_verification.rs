@@ -8,7 +8,7 @@
 mod common;
 
 use cdca::report::SolveReport;
-use cdca::scene::{Plane, Scene, SideBc};
+use cdca::scene::{Plane, SceneFile, SideBc};
 use cdca::{ContactState, Simulation};
 use common::*;
 
@@ -17,11 +17,18 @@ const N: usize = 100;
 
 /// 1 m plate, 45° crack of half-length 0.05 at the centre, rollers on the
 /// bottom and left, `-p` on top and `-k p` on the right.
-fn biaxial(k: f64, mu: f64, cohesion: f64, kn_h_over_e: Option<f64>, p: f64) -> Scene {
+fn biaxial(k: f64, mu: f64, cohesion: f64, kn_h_over_e: Option<f64>, p: f64) -> SceneFile {
     biaxial_on(N, k, mu, cohesion, kn_h_over_e, p)
 }
 
-fn biaxial_on(n: usize, k: f64, mu: f64, cohesion: f64, kn_h_over_e: Option<f64>, p: f64) -> Scene {
+fn biaxial_on(
+    n: usize,
+    k: f64,
+    mu: f64,
+    cohesion: f64,
+    kn_h_over_e: Option<f64>,
+    p: f64,
+) -> SceneFile {
     let mut s = plate(1.0, 1.0, n, n);
     s.material.young = 4.78e9;
     s.material.poisson = 0.25;
@@ -135,7 +142,7 @@ fn face_cohesion_lowers_k2() {
 #[test]
 fn slip_profile_is_elliptical() {
     let p = 10e6;
-    let mut sim = Simulation::new(biaxial(0.0, 0.0, 0.0, None, p)).expect("valid");
+    let mut sim = Simulation::new(valid(biaxial(0.0, 0.0, 0.0, None, p))).expect("valid");
     let r = sim.solve().expect("solve");
     assert!(r.converged() && r.contact.cycling == 0, "{:?}", r.contact);
     let (tau, _) = resolved(0.0, p);
@@ -166,14 +173,14 @@ fn open_crack_costs_nothing_and_matches_no_contact() {
     let mut c = centre_crack(0.5, 0.5, 0.1, 30.0);
     c.friction = 0.6;
     s.cracks.push(c);
-    let mut sim = Simulation::new(s.clone()).expect("valid");
+    let mut sim = Simulation::new(valid(s.clone())).expect("valid");
     let r = sim.solve().expect("solve");
     assert!(r.converged() && r.contact.cycling == 0, "{:?}", r.contact);
     assert_eq!(r.contact.iterations, 1);
     assert_eq!(r.contact.stick + r.contact.slip, 0);
     assert!(r.contact.open > 0);
     // without contact: the plain linear problem
-    let model = cdca::discretisation::model::Model::new(s.clone());
+    let model = cdca::discretisation::model::Model::new(valid(s.clone()));
     let x = model.discretise(model.initial_cracks());
     let f = cdca::discretisation::loads::traction_forces(&x, &s.boundary);
     let u = cdca::solvers::direct::Factor::new(&x, &[])
@@ -235,7 +242,7 @@ fn stiff_and_extreme_cases_end_cleanly() {
         for mu in [0.0, 0.32, 10.0] {
             for p in [1.0, 10e6, 1e9] {
                 let mut sim =
-                    Simulation::new(biaxial(0.2, mu, 0.0, Some(alpha), p)).expect("valid");
+                    Simulation::new(valid(biaxial(0.2, mu, 0.0, Some(alpha), p))).expect("valid");
                 let r = sim.solve().expect("an explicit status, not an error");
                 let case = format!("α {alpha:e} μ {mu} p {p:e}");
                 assert!(finite(&r), "{case}: {r:?}");
@@ -275,7 +282,7 @@ fn stiff_and_extreme_cases_end_cleanly() {
 fn threshold_case_terminates() {
     let k = 0.2;
     let mu = (1.0 - k) / (1.0 + k);
-    let mut sim = Simulation::new(biaxial(k, mu, 0.0, None, 10e6)).expect("valid");
+    let mut sim = Simulation::new(valid(biaxial(k, mu, 0.0, None, 10e6))).expect("valid");
     let r = sim.solve().expect("explicit status");
     assert!(r.contact.iterations <= 50);
     // at the threshold a point may cycle; it must still obey the law
@@ -320,7 +327,7 @@ fn relaxation_does_not_depend_on_the_slice_size() {
         let one_call = solve(s.clone());
         assert!(one_call.converged(), "{kind:?}: {:?}", one_call.contact);
         for slice in [1, 1000] {
-            let mut sim = Simulation::new(s.clone()).expect("valid");
+            let mut sim = Simulation::new(valid(s.clone())).expect("valid");
             sim.start_relaxation();
             let mut calls = 0;
             while !sim.relax(slice).expect("relax").finished {

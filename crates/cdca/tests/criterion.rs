@@ -6,7 +6,7 @@ mod common;
 
 use cdca::Simulation;
 use cdca::report::TipReport;
-use cdca::scene::{Sampling, Scene, SideBc};
+use cdca::scene::{Sampling, SceneFile, SideBc};
 use common::*;
 
 /// Erdogan–Sih kink angle for K_I = K_II, degrees.
@@ -20,10 +20,10 @@ const N: usize = 200;
 
 /// The tips of `scene` after one solve with the default sampling and
 /// `r0 = f h`.
-fn tips_at(mut scene: Scene, f: f64) -> Vec<TipReport> {
+fn tips_at(mut scene: SceneFile, f: f64) -> Vec<TipReport> {
     assert_eq!(scene.criterion.sampling, Sampling::Hybrid, "the default");
     scene.criterion.r0 = Some(f / N as f64);
-    let report = Simulation::new(scene)
+    let report = Simulation::new(valid(scene))
         .expect("valid")
         .solve()
         .expect("solve");
@@ -56,7 +56,7 @@ fn default_sampling_kinks_by_erdogan_sih_at_any_radius() {
 /// A closed crack (half-length 0.1, μ = 0.3) at `deg` in the unit plate,
 /// slightly off centre so its tips sit inside elements, under P_V = 20 MPa
 /// and P_H = 5 MPa (rollers on the bottom and left).
-fn closed_crack_plate(deg: f64) -> Scene {
+fn closed_crack_plate(deg: f64) -> SceneFile {
     let mut s = plate(1.0, 1.0, N, N);
     s.boundary.bottom = SideBc::Roller;
     s.boundary.left = SideBc::Roller;
@@ -92,11 +92,11 @@ fn default_sampling_carries_the_face_stress_of_a_closed_crack() {
     let sigma_n = 12.5e6;
     for f in RADII {
         let r0 = f / N as f64;
-        let mut sim = Simulation::new({
+        let mut sim = Simulation::new(valid({
             let mut s = s.clone();
             s.criterion.r0 = Some(r0);
             s
-        })
+        }))
         .expect("valid");
         let report = sim.solve().expect("solve");
         for (i, t) in report.tips.iter().enumerate() {
@@ -156,7 +156,10 @@ fn default_radius_and_strength_follow_the_material() {
 #[test]
 fn interaction_integral_t_of_a_closed_crack_is_sigma11_minus_sigma22() {
     let s = closed_crack_plate(30.0);
-    let report = Simulation::new(s).expect("valid").solve().expect("solve");
+    let report = Simulation::new(valid(s))
+        .expect("valid")
+        .solve()
+        .expect("solve");
     for t in &report.tips {
         assert!(rel(t.t_stress, 7.5e6) < 0.02, "T = {:.4e}", t.t_stress);
     }

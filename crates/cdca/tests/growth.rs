@@ -6,7 +6,8 @@ use cdca::Simulation;
 use cdca::geometry::cracks::TipKind;
 use cdca::report::Mode;
 use cdca::scene::{
-    CrackSpec, CriterionKind, Fix, GrowthControl, Plane, PointSupport, Sampling, Scene, SideBc,
+    CrackSpec, CriterionKind, Fix, GrowthControl, Plane, PointSupport, Sampling, Scene, SceneFile,
+    SideBc,
 };
 use common::*;
 
@@ -30,7 +31,7 @@ fn mode_i_growth_is_straight_and_symmetric() {
     s.growth.max_growth_per_step = 4;
     s.growth.max_steps = 5;
     let da = 3.0 * 0.025;
-    let mut sim = Simulation::new(s).expect("valid");
+    let mut sim = Simulation::new(valid(s)).expect("valid");
     run(&mut sim);
     let grown: Vec<_> = sim
         .history()
@@ -63,7 +64,7 @@ fn mixed_mode_kink_angle_is_erdogan_sih() {
         s.criterion.kind = kind;
         s.criterion.sampling = sampling;
         s.growth.load_steps = 1;
-        let mut sim = Simulation::new(s).expect("valid");
+        let mut sim = Simulation::new(valid(s)).expect("valid");
         let step = sim.grow_step().expect("step");
         assert_eq!(step.grown.len(), 2, "{kind:?}: both tips grow");
         for g in &step.grown {
@@ -87,7 +88,7 @@ fn mixed_mode_kink_angle_is_erdogan_sih() {
 /// 100 MPa, grown under critical control with the material's default
 /// criterion (r0 = (K_IC/σ_t)²/2π = 1.35 mm, hybrid sampling, shear branch
 /// from the faces).
-fn flaw_scene(n: usize, (cx, cy): (f64, f64), a: f64, deg: f64) -> Scene {
+fn flaw_scene(n: usize, (cx, cy): (f64, f64), a: f64, deg: f64) -> SceneFile {
     let mut s = plate(0.03, 0.03, n, n);
     s.specimen.thickness = 0.015;
     s.material.young = 4.78e9;
@@ -118,7 +119,7 @@ fn flaw_scene(n: usize, (cx, cy): (f64, f64), a: f64, deg: f64) -> Scene {
 
 /// The held-out flaw of the wing tests: 3.4 mm at 40°, off centre (tips
 /// inside elements at any of the meshes used).
-fn wing_scene(n: usize, increment: Option<f64>) -> Scene {
+fn wing_scene(n: usize, increment: Option<f64>) -> SceneFile {
     let mut s = flaw_scene(n, (0.01487, 0.01523), 0.0017, 40.0);
     s.growth.increment = increment;
     s
@@ -171,7 +172,7 @@ fn end_angle_from_vertical(p: &[[f64; 2]], len: f64) -> f64 {
 #[test]
 fn wing_cracks_curve_toward_the_load() {
     let a = 0.0034;
-    let mut sim = Simulation::new(wing_scene(100, None)).expect("valid");
+    let mut sim = Simulation::new(valid(wing_scene(100, None))).expect("valid");
     run(&mut sim);
     let steps = sim.history();
     println!("outcome {:?}", sim.growth_finished());
@@ -230,16 +231,16 @@ fn wing_cracks_curve_toward_the_load() {
 #[test]
 fn lambda_cr_is_the_threshold_load() {
     let scene = flaw_scene(80, (0.01413, 0.01562), 0.00135, 57.0);
-    let mut sim = Simulation::new(scene.clone()).expect("valid");
+    let mut sim = Simulation::new(valid(scene.clone())).expect("valid");
     let step = sim.grow_step().expect("step");
     assert!(step.converged && !step.grown.is_empty(), "{step:?}");
     let lambda = step.load_factor;
     println!("λ_cr = {lambda}");
     for (f, grows) in [(1.0, true), (0.99, false)] {
-        let s = scene
+        let s = valid(scene.clone())
             .with_param("boundary.top.normal", -100e6 * lambda * f)
             .expect("scene");
-        let r = solve(s);
+        let r = solve(s.into_file());
         let n = r
             .tips
             .iter()
@@ -257,15 +258,15 @@ fn lambda_cr_is_the_threshold_load() {
 #[test]
 fn growth_does_not_depend_on_the_slice_size() {
     let text = include_str!("../../../assets/scenes/closed_crack_biaxial.json");
-    let mut closed = Scene::from_json(text).expect("scene");
+    let mut closed = Scene::from_json(text).expect("scene").into_file();
     closed.solver.kind = cdca::scene::SolverKind::Multigrid;
     closed.solver.tolerance = 1e-9;
     for (scene, steps) in [
         (flaw_scene(40, (0.0151, 0.0148), 0.002, 35.0), 3),
         (closed, 2),
     ] {
-        let mut a = Simulation::new(scene.clone()).expect("valid");
-        let mut b = Simulation::new(scene).expect("valid");
+        let mut a = Simulation::new(valid(scene.clone())).expect("valid");
+        let mut b = Simulation::new(valid(scene)).expect("valid");
         for _ in 0..steps {
             a.grow_step().expect("step");
             let mut calls = 0;
@@ -293,7 +294,7 @@ fn wing_path_is_insensitive_to_mesh_and_increment() {
     let path = |n: usize, da: f64| {
         let mut scene = flaw_scene(n, (0.015, 0.015), 0.003, 45.0);
         scene.growth.increment = Some(da);
-        let mut sim = Simulation::new(scene).expect("valid");
+        let mut sim = Simulation::new(valid(scene)).expect("valid");
         while sim.growth_finished().is_none() && length(&wing_from(&sim, tip)) < 0.004 {
             let step = sim.grow_step().expect("step");
             assert!(step.converged, "step {} did not converge", step.step);
@@ -366,7 +367,7 @@ fn junctions(sim: &Simulation) -> usize {
 
 /// A held-out flaw pair: a 3.4 mm flaw at 50° centred at `centre` (100 ×
 /// 100, product defaults) and a copy shifted by `offset`, m.
-fn flaw_pair(centre: (f64, f64), offset: [f64; 2]) -> Scene {
+fn flaw_pair(centre: (f64, f64), offset: [f64; 2]) -> SceneFile {
     let mut scene = flaw_scene(100, centre, 0.0017, 50.0);
     let mut second = scene.cracks[0].clone();
     second.points = second.points.map(|p| {
@@ -380,9 +381,9 @@ fn flaw_pair(centre: (f64, f64), offset: [f64; 2]) -> Scene {
 
 /// Grows `scene` (at most 30 steps) until a junction forms or growth ends,
 /// asserting that every step converged.
-fn grow_until_junction(name: &str, mut scene: Scene) -> Simulation {
+fn grow_until_junction(name: &str, mut scene: SceneFile) -> Simulation {
     scene.growth.max_steps = 30;
-    let mut sim = Simulation::new(scene).expect("valid");
+    let mut sim = Simulation::new(valid(scene)).expect("valid");
     while sim.growth_finished().is_none() && junctions(&sim) == 0 {
         let step = sim.grow_step().expect("step");
         assert!(
@@ -403,7 +404,7 @@ fn grow_until_junction(name: &str, mut scene: Scene) -> Simulation {
 #[test]
 fn stepped_flaws_coalesce() {
     let text = include_str!("../../../assets/scenes/specimen_two_flaws_stepped.json");
-    let bundled = Scene::from_json(text).expect("scene");
+    let bundled = Scene::from_json(text).expect("scene").into_file();
     let held_out = flaw_pair((0.01437, 0.01281), [0.0012, 0.0046]);
     for (name, scene) in [("bundled", bundled), ("held out", held_out)] {
         let sim = grow_until_junction(name, scene);
@@ -429,7 +430,7 @@ fn stepped_flaws_coalesce() {
 #[test]
 fn overlapping_flaws_coalesce() {
     let text = include_str!("../../../assets/scenes/specimen_two_flaws_overlapping.json");
-    let mut bundled = Scene::from_json(text).expect("scene");
+    let mut bundled = Scene::from_json(text).expect("scene").into_file();
     bundled.mesh.nx = 80;
     bundled.mesh.ny = 80;
     let held_out = flaw_pair((0.01391, 0.01537), [0.0026, -0.0015]);
@@ -491,12 +492,12 @@ fn element_reuse_after_growth_matches_a_fresh_build() {
     s.cracks.push(centre_crack(0.5, 0.5, 0.1, 20.0));
     s.growth.load_steps = 1;
     s.growth.max_growth_per_step = 3;
-    let mut sim = Simulation::new(s).expect("valid");
+    let mut sim = Simulation::new(valid(s)).expect("valid");
     for _ in 0..2 {
         sim.grow_step().expect("step");
     }
     let grown = sim.solve().expect("solve");
-    let fresh = solve(sim.scene().clone());
+    let fresh = solve(sim.scene().clone().into_file());
     assert_eq!(grown.tips.len(), fresh.tips.len());
     for (a, b) in grown.tips.iter().zip(&fresh.tips) {
         assert!(
@@ -516,14 +517,14 @@ fn element_reuse_after_growth_matches_a_fresh_build() {
 #[test]
 fn a_scene_saved_mid_growth_grows_the_same_next_steps() {
     let text = include_str!("../../../assets/scenes/closed_crack_biaxial.json");
-    let mut closed = Scene::from_json(text).expect("scene");
+    let mut closed = Scene::from_json(text).expect("scene").into_file();
     closed.solver.kind = cdca::scene::SolverKind::Multigrid;
     closed.solver.tolerance = 1e-9;
     for (scene, before, after) in [
         (flaw_scene(40, (0.0151, 0.0148), 0.002, 35.0), 2, 2),
         (closed, 1, 2),
     ] {
-        let mut a = Simulation::new(scene).expect("valid");
+        let mut a = Simulation::new(valid(scene)).expect("valid");
         for _ in 0..before {
             a.grow_step().expect("step");
         }
@@ -552,7 +553,8 @@ fn a_scene_saved_mid_growth_grows_the_same_next_steps() {
 /// starts from other states, so not to the bit).
 #[test]
 fn the_end_of_a_run_is_solved_at_the_last_load() {
-    let mut sim = Simulation::new(flaw_scene(40, (0.0151, 0.0148), 0.002, 35.0)).expect("valid");
+    let mut sim =
+        Simulation::new(valid(flaw_scene(40, (0.0151, 0.0148), 0.002, 35.0))).expect("valid");
     assert_eq!(sim.start_final_solve(), None, "growth has not ended");
     while sim.growth_finished().is_none() {
         sim.grow_step().expect("step");

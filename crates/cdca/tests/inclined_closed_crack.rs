@@ -20,7 +20,7 @@ const LOAD: f64 = 100e6;
 const TO_LOAD_DEG: f64 = 20.0;
 
 /// The scene with face friction `mu` (penalty contact, default stiffnesses).
-fn scene(mu: f64) -> cdca::Scene {
+fn scene(mu: f64) -> cdca::scene::SceneFile {
     let h = A / PER_HALF_LENGTH as f64;
     let n = 20 * PER_HALF_LENGTH + 1; // odd: the centre is inside an element
     let w = n as f64 * h;

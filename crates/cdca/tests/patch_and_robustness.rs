@@ -5,8 +5,8 @@ mod common;
 use cdca::scene::{CrackSpec, Fix, PointSupport};
 use common::*;
 
-fn uniform_stress_error(s: cdca::Scene, sigma_yy: f64) -> f64 {
-    let mut sim = cdca::Simulation::new(s).expect("valid");
+fn uniform_stress_error(s: cdca::scene::SceneFile, sigma_yy: f64) -> f64 {
+    let mut sim = cdca::Simulation::new(valid(s)).expect("valid");
     sim.solve().expect("solve");
     let mut worst: f64 = 0.0;
     for i in 0..=10 {

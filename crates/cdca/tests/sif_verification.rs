@@ -41,7 +41,7 @@ fn centre_crack_tension_matches_tada() {
 /// The edge crack a/W = 0.5 in a 1 × 2 plate on an `nx × ny` mesh: 1 MPa
 /// on top and bottom, the right edge held at mid-height (xy) and at the top
 /// (x).
-fn edge_crack_scene(nx: usize, ny: usize) -> cdca::Scene {
+fn edge_crack_scene(nx: usize, ny: usize) -> cdca::scene::SceneFile {
     let mut s = plate(1.0, 2.0, nx, ny);
     tension_top_bottom(&mut s, 1e6);
     s.boundary.points = vec![
@@ -212,7 +212,7 @@ fn interaction_integral_is_path_independent() {
     let mut s = plate(1.0, 3.0, 80, 240);
     tension_top_bottom(&mut s, 1e6);
     s.cracks.push(centre_crack(0.5, 1.5, 0.15, 0.0));
-    let mut sim = Simulation::new(s).expect("valid");
+    let mut sim = Simulation::new(valid(s)).expect("valid");
     sim.solve().expect("solve");
     let x = sim.xfem();
     let f = cdca::discretisation::field::Field {

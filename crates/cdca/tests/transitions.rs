@@ -29,8 +29,9 @@ fn initiation(name: &str, n: usize) -> Option<Initiation> {
         "{}/../../assets/scenes/{name}.json",
         env!("CARGO_MANIFEST_DIR")
     );
-    let mut scene =
-        Scene::from_json(&std::fs::read_to_string(path).expect("scene file")).expect("valid scene");
+    let mut scene = Scene::from_json(&std::fs::read_to_string(path).expect("scene file"))
+        .expect("valid scene")
+        .into_file();
     scene.mesh.nx = n;
     scene.mesh.ny = n;
     scene.criterion = CriterionSpec::default();
@@ -45,7 +46,8 @@ fn initiation(name: &str, n: usize) -> Option<Initiation> {
     // a fresh simulation per load: friction is path dependent, and the slip
     // left by a higher load would stay locked in at a lower one
     let at = |lambda: f64| {
-        let mut sim = Simulation::new(scene.clone()).expect("valid");
+        let mut sim =
+            Simulation::new(Scene::try_from(scene.clone()).expect("valid")).expect("builds");
         sim.set_load_factor(lambda);
         let report = sim.solve().expect("solve");
         report

@@ -1,18 +1,20 @@
-//! The scene file (SPEC §10): a versioned serde type, validated on load.
-//!
-//! Parse with [`Scene::from_json`]; it rejects unknown fields and every invalid
-//! value before any work is done, naming the field and the value.
+//! The scene file (SPEC §10) as written: a serde type whose values are not
+//! yet checked. [`Scene`](super::Scene) is the checked form: convert with
+//! `Scene::try_from(file)` or parse with [`Scene::from_json`](super::Scene::from_json),
+//! which reject unknown fields and every invalid value before any work is
+//! done, naming the field and the value.
 //! All quantities are SI (m, Pa, Pa/m); compression is negative.
 
 use serde::{Deserialize, Serialize};
 
 use crate::error::SceneError;
 
-/// A whole scene: specimen, mesh, material, cracks, supports and loads, and
-/// the settings of criterion, growth and solver.
+/// A whole scene as in the file: specimen, mesh, material, cracks, supports
+/// and loads, and the settings of criterion, growth and solver. Any values:
+/// this is what an editor changes; [`Scene`](super::Scene) is the valid one.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Scene {
+pub struct SceneFile {
     /// Free text shown to the user.
     #[serde(default)]
     pub name: String,
@@ -335,7 +337,11 @@ pub enum SolverKind {
 pub enum Ordering {
     #[default]
     Lexicographic,
-    /// Four-colour ordering of the nodes (the Q4 analogue of red–black).
+    /// Four-colour ordering of the nodes by the parities of their grid
+    /// indices (i mod 2, j mod 2): nodes of one colour never share a Q4
+    /// element, so their updates commute. Named `red_black` in scene files
+    /// after the two-colour ordering of 5-point stencils it generalises; on
+    /// Q4 elements two colours do not decouple the nodes, four do.
     RedBlack,
 }
 
@@ -421,14 +427,11 @@ fn default_max_contact_iterations() -> usize {
     50
 }
 
-impl Scene {
-    /// Parses and validates a scene. Unknown fields, wrong types and invalid
-    /// values are errors naming the field.
+impl SceneFile {
+    /// Parses a scene file without checking its values (unknown fields and
+    /// wrong types are errors naming the field).
     pub fn from_json(text: &str) -> Result<Self, SceneError> {
-        let scene: Scene =
-            serde_json::from_str(text).map_err(|e| SceneError::Parse(e.to_string()))?;
-        scene.validate()?;
-        Ok(scene)
+        serde_json::from_str(text).map_err(|e| SceneError::Parse(e.to_string()))
     }
 
     /// Pretty JSON; `from_json(to_json(s)?) == s`.

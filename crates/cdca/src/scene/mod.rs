@@ -1,6 +1,8 @@
-//! The scene contract (SPEC §10): the JSON scene file as a serde type, and
-//! its validation before any work ("parse, don't validate": every value is
-//! checked on load and a bad one is named with its field).
+//! The scene contract (SPEC §10): the JSON scene file as a serde type
+//! ([`SceneFile`], any values) and the valid scene ([`Scene`]), into which a
+//! file converts once, through `TryFrom`, checking every value and naming a
+//! bad one with its field ("parse, don't validate": nothing downstream checks
+//! a scene again).
 //!
 //! The bottom of the crate: uses only [`error`](crate::error); everything
 //! else reads scenes.
@@ -8,12 +10,14 @@
 mod file;
 mod param;
 mod resume;
+mod valid;
 mod validate;
 
 pub use file::{
     ArcSpec, Boundary, CrackSpec, CriterionKind, CriterionSpec, Fix, GrowthControl, GrowthSpec,
-    Material, MeshSpec, Ordering, Plane, PointSupport, Sampling, Scene, ShearStrength, SideBc,
+    Material, MeshSpec, Ordering, Plane, PointSupport, Sampling, SceneFile, ShearStrength, SideBc,
     SolverKind, SolverSpec, Specimen,
 };
 pub use resume::Resume;
+pub use valid::Scene;
 pub use validate::MAX_ELEMENTS;

@@ -3,11 +3,13 @@
 
 use serde_json::Value;
 
-use super::file::Scene;
+use super::file::SceneFile;
+use super::valid::Scene;
 use crate::error::SceneError;
 
 impl Scene {
-    /// The scene with the number at `path` set to `value`, validated.
+    /// The scene with the number at `path` set to `value`, checked (the
+    /// checked setter of one number, by name).
     /// `path` is dotted, with array indices as numbers:
     /// `cracks.0.friction`, `boundary.right.normal`, `criterion.r0`. The
     /// field must exist in the scene file's layout (an optional field that
@@ -40,10 +42,9 @@ impl Scene {
             }
         }
         *node = Value::from(value);
-        let scene: Self =
+        let file: SceneFile =
             serde_json::from_value(root).map_err(|e| SceneError::Parse(e.to_string()))?;
-        scene.validate()?;
-        Ok(scene)
+        Self::try_from(file)
     }
 }
 

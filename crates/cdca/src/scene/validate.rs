@@ -1,4 +1,5 @@
-//! Validation of a parsed [`Scene`](crate::scene::Scene) (SPEC §10).
+//! The checks of a [`SceneFile`] (SPEC §10), the one place where scene
+//! values are checked: `Scene::try_from` runs them.
 //!
 //! Every value is checked before any work is done. The first problem found is
 //! returned as [`SceneError::Invalid`] whose `field` is a dotted JSON path
@@ -7,17 +8,17 @@
 mod rigid_body;
 
 use crate::error::SceneError;
-use crate::scene::{ArcSpec, CrackSpec, Material, Scene, SideBc};
+use crate::scene::{ArcSpec, CrackSpec, Material, SceneFile, SideBc};
 
 /// Largest accepted mesh, in elements (`nx × ny`).
 pub const MAX_ELEMENTS: usize = 4_000_000;
 
 type Check = Result<(), SceneError>;
 
-impl Scene {
+impl SceneFile {
     /// Checks every value; the first problem found is returned, naming the
     /// field and the value.
-    pub fn validate(&self) -> Result<(), SceneError> {
+    pub(super) fn validate(&self) -> Result<(), SceneError> {
         self.validate_specimen_and_mesh()?;
         validate_material(&self.material)?;
         for (i, crack) in self.cracks.iter().enumerate() {
@@ -251,7 +252,7 @@ fn fmt_point(p: [f64; 2]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{Fix, Plane, PointSupport, SideBc::Traction};
+    use crate::scene::{Fix, Plane, PointSupport, Scene, SideBc::Traction};
 
     /// The SPEC §10 example with every optional field set and an arc crack.
     const FULL: &str = r#"{
@@ -278,11 +279,13 @@ mod tests {
         "ordering": "red_black", "contact_tolerance": 1e-8, "max_contact_iterations": 50 }
     }"#;
 
-    fn full() -> Scene {
-        Scene::from_json(FULL).expect("the full example scene is valid")
+    fn full() -> SceneFile {
+        Scene::from_json(FULL)
+            .expect("the full example scene is valid")
+            .into_file()
     }
 
-    fn field_of(scene: &Scene) -> Option<String> {
+    fn field_of(scene: &SceneFile) -> Option<String> {
         match scene.validate() {
             Err(SceneError::Invalid { field, .. }) => Some(field),
             Err(e @ (SceneError::Parse(_) | SceneError::Write(_))) => {
@@ -292,7 +295,7 @@ mod tests {
         }
     }
 
-    type Case = (&'static str, fn(&mut Scene));
+    type Case = (&'static str, fn(&mut SceneFile));
 
     /// Every invalid case of SPEC §10 and the brief, with the field it names.
     #[rustfmt::skip]
@@ -376,7 +379,7 @@ mod tests {
         ("boundary", |s| (s.boundary.left, s.boundary.bottom) = (SideBc::Free, SideBc::Free)),
     ];
 
-    fn arc(scene: &mut Scene) -> &mut crate::scene::ArcSpec {
+    fn arc(scene: &mut SceneFile) -> &mut crate::scene::ArcSpec {
         scene.cracks[1].arc.as_mut().expect("cracks[1] is an arc")
     }
 
@@ -416,7 +419,7 @@ mod tests {
         let scene = full();
         let text = scene.to_json().expect("a valid scene writes");
         let again = Scene::from_json(&text).expect("to_json output parses");
-        assert_eq!(again, scene);
+        assert_eq!(*again, scene);
         assert_eq!(again.to_json().expect("writes"), text);
     }
 

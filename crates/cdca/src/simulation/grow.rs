@@ -222,7 +222,7 @@ impl Simulation {
         step.crack_length = self.state.cracks.iter().map(Crack::length).sum();
         step.seconds = start.elapsed().as_secs_f64();
         self.state.history.push(step.clone());
-        self.state.scene.growth.resume = Some(self.resume(step.step));
+        self.state.scene.set_resume(self.resume(step.step));
         step
     }
 
@@ -313,7 +313,7 @@ impl Simulation {
         // the next step starts from no displacement (see `Resume`)
         self.state.u = vec![0.0; self.scratch.xfem.n_free()];
         self.state.solved = false;
-        self.state.scene.cracks = self
+        let grown = self
             .state
             .cracks
             .iter()
@@ -324,6 +324,7 @@ impl Simulation {
                 ..spec.clone()
             })
             .collect();
+        self.state.scene.set_grown_cracks(grown);
     }
 
     /// After growth has ended: the final cracks at the last step's load

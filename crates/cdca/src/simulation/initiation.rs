@@ -32,8 +32,7 @@ pub struct Initiation {
 /// as critical whatever the scene says): a root search on λ through the
 /// contact solve, then the growing tip's mode, angle and SIFs at λ_cr.
 pub fn initiation(scene: &Scene) -> Result<Initiation, SolveError> {
-    let mut scene = scene.clone();
-    scene.growth.control = GrowthControl::Critical;
+    let scene = scene.edit(|s| s.growth.control = GrowthControl::Critical)?;
     let mut sim = Simulation::new(scene)?;
     let step = sim.grow_step()?;
     let first = step.grown.first();

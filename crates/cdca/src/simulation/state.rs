@@ -77,9 +77,9 @@ pub(super) struct Scratch {
 }
 
 impl Simulation {
-    /// Validates the scene and builds the discretisation (no solve yet).
+    /// Builds the discretisation of a (valid) scene; no solve yet. Fails
+    /// only when `growth.resume` does not fit the cracks' discretisation.
     pub fn new(scene: Scene) -> Result<Self, SolveError> {
-        scene.validate()?;
         let model = Model::new(scene.clone());
         let cracks = model.initial_cracks();
         let xfem = model.discretise(cracks.clone());

@@ -25,7 +25,6 @@ use crate::solvers::element_op::{ElementOperator, norm};
 pub struct AutomatonParams {
     /// Over-relaxation factor ω in (0, 2); 1 is block Gauss–Seidel.
     pub omega: f64,
-    pub ordering: Ordering,
     /// Relative residual tolerance: `‖r‖ ≤ tolerance ‖f‖`.
     pub tolerance: f64,
     /// Relative change tolerance: `max |Δu| ≤ tolerance_u max |u|`.
@@ -38,7 +37,6 @@ impl Default for AutomatonParams {
     fn default() -> Self {
         Self {
             omega: 1.0,
-            ordering: Ordering::Lexicographic,
             tolerance: 1e-10,
             tolerance_u: 1e-10,
             refresh: 50,

@@ -89,7 +89,6 @@ impl Relaxation {
             SolverKind::Automaton => {
                 let params = AutomatonParams {
                     omega: spec.omega,
-                    ordering: spec.ordering,
                     tolerance: tol,
                     tolerance_u: tol,
                     ..AutomatonParams::default()

@@ -5,14 +5,14 @@ use cdca::Simulation;
 use cdca::report::SolveReport;
 use cdca::scene::{
     Boundary, CrackSpec, CriterionSpec, Fix, GrowthSpec, Material, MeshSpec, Plane, PointSupport,
-    Scene, SideBc, SolverSpec, Specimen,
+    Scene, SceneFile, SideBc, SolverSpec, Specimen,
 };
 
 pub const PI: f64 = std::f64::consts::PI;
 
 /// A `w × h` plate, steel-like, plane strain, no cracks, free sides.
-pub fn plate(w: f64, h: f64, nx: usize, ny: usize) -> Scene {
-    Scene {
+pub fn plate(w: f64, h: f64, nx: usize, ny: usize) -> SceneFile {
+    SceneFile {
         name: "test".into(),
         description: String::new(),
         specimen: Specimen {
@@ -51,7 +51,7 @@ pub fn plate(w: f64, h: f64, nx: usize, ny: usize) -> Scene {
 
 /// Uniform tension `s` on top and bottom, rigid motion removed by two
 /// points at mid-height of the left and right sides.
-pub fn tension_top_bottom(scene: &mut Scene, s: f64) {
+pub fn tension_top_bottom(scene: &mut SceneFile, s: f64) {
     let (w, h) = (scene.specimen.width, scene.specimen.height);
     scene.boundary.top = SideBc::Traction {
         normal: s,
@@ -82,8 +82,8 @@ pub fn centre_crack(cx: f64, cy: f64, a: f64, deg: f64) -> CrackSpec {
 /// Solves at full load and asserts the status every result is compared
 /// under: linear solve and contact iteration converged, no point frozen for
 /// cycling.
-pub fn solve(scene: Scene) -> SolveReport {
-    let mut sim = Simulation::new(scene).expect("valid scene");
+pub fn solve(scene: SceneFile) -> SolveReport {
+    let mut sim = Simulation::new(valid(scene)).expect("builds");
     let r = sim.solve().expect("solve");
     assert!(r.converged(), "{:?}", r.failure());
     assert_eq!(
@@ -92,6 +92,23 @@ pub fn solve(scene: Scene) -> SolveReport {
         r.contact
     );
     r
+}
+
+/// The scene, checked (`Scene::try_from`); panics naming the bad field.
+pub fn valid(scene: SceneFile) -> Scene {
+    Scene::try_from(scene).unwrap_or_else(|e| panic!("invalid test scene: {e}"))
+}
+
+/// A bundled scene's file (assets/scenes/NAME.json), checked, for editing.
+pub fn bundled(name: &str) -> SceneFile {
+    let path = format!(
+        "{}/../../assets/scenes/{name}.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    Scene::from_json(&text)
+        .unwrap_or_else(|e| panic!("{path}: {e}"))
+        .into_file()
 }
 
 /// Relative difference.

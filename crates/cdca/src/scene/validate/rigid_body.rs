@@ -4,7 +4,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 use crate::error::SceneError;
-use crate::scene::{Fix, Scene, SideBc};
+use crate::scene::{Fix, SceneFile, SideBc};
 
 /// A rigid-body motion counts as free when its eigenvalue of the constraint
 /// Gram matrix is below this fraction of the largest one.
@@ -17,7 +17,7 @@ pub(crate) enum Axis {
     Y,
 }
 
-impl Scene {
+impl SceneFile {
     /// Rejects supports that leave a rigid-body motion free: the 3×3 Gram
     /// matrix of the modes (1,0), (0,1), (−y,x) sampled at the fixed
     /// components must have full rank. Coordinates are scaled by the
@@ -112,10 +112,10 @@ mod tests {
     use super::*;
     use crate::scene::{Boundary, PointSupport};
 
-    fn plate(boundary: Boundary) -> Scene {
+    fn plate(boundary: Boundary) -> SceneFile {
         let text = r#"{ "specimen": { "width": 2.0, "height": 1.0 }, "mesh": { "nx": 20, "ny": 10 },
                         "material": { "young": 1e9 } }"#;
-        let mut scene: Scene = serde_json::from_str(text).expect("plate parses");
+        let mut scene: SceneFile = serde_json::from_str(text).expect("plate parses");
         scene.boundary = boundary;
         scene
     }

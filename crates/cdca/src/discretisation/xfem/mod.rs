@@ -1,0 +1,282 @@
+//! The extended finite element discretisation of one crack configuration,
+//! in three parts: which nodes are enriched and how ([`classify`]), the
+//! enriched elements' quadrature and stiffness ([`element`]), and the
+//! crack-face pieces where contact acts ([`faces`]). [`Xfem`] holds them
+//! with the DOF map.
+//!
+//! Built from the model (mesh, material, supports) and the current cracks;
+//! rebuilt when cracks change. Elements with no enriched node share one
+//! stiffness matrix `k0`, computed once.
+
+pub mod classify;
+pub mod element;
+pub mod faces;
+
+use std::cell::OnceCell;
+
+use nalgebra::{DMatrix, SMatrix};
+
+use crate::discretisation::dofs::{DofMap, FIXED};
+use crate::discretisation::enrichment::EnrichmentFunctions;
+use crate::discretisation::material::Elastic;
+use crate::discretisation::pattern::Pattern;
+use crate::discretisation::xfem::classify::{classify_nodes, element_segments, element_tips};
+use crate::discretisation::xfem::element::{
+    Previous, add_stiffness, build_elements, eval_scalars, regular_stiffness,
+};
+use crate::discretisation::xfem::faces::build_faces;
+use crate::error::SolveError;
+use crate::geometry::cracks::Crack;
+use crate::geometry::mesh::Mesh;
+use crate::geometry::plane::P2;
+
+pub use classify::{ScalarFn, XfemParams, prepare_cracks};
+pub use element::{EnrichedElement, REGULAR, fill_b};
+pub use faces::{FACE_ORDER, FacePoint, MIN_TIP_PIECE};
+
+/// Panic message for a solver given a discretisation built with
+/// [`Xfem::build`] before [`Xfem::integrate`] completed it.
+pub const NOT_INTEGRATED: &str = "element stiffness not yet integrated (Xfem::integrate)";
+
+/// What may be reused from the previous discretisation after a crack
+/// change: element data far enough from every point that moved.
+pub struct Reuse<'a> {
+    pub previous: &'a Xfem,
+    /// Old and new positions of the tips that changed.
+    pub moved: Vec<P2>,
+}
+
+/// The discretisation.
+#[derive(Clone, Debug)]
+pub struct Xfem {
+    pub mesh: Mesh,
+    pub elastic: Elastic,
+    pub thickness: f64,
+    pub params: XfemParams,
+    pub funcs: EnrichmentFunctions,
+    pub dofs: DofMap,
+    /// Per element: index into `enriched`, or [`REGULAR`].
+    pub slot: Vec<u32>,
+    pub enriched: Vec<EnrichedElement>,
+    /// Stiffness of an ordinary element (DOF order `x0 y0 x1 y1 …`).
+    pub k0: SMatrix<f64, 8, 8>,
+    pub faces: Vec<FacePoint>,
+    /// Sparsity pattern and symbolic Cholesky of the stiffness, computed on
+    /// first use and shared by every factorisation on this discretisation.
+    pattern: OnceCell<Pattern>,
+    /// Slots of enriched elements whose stiffness is still to be integrated
+    /// (see [`build`](Self::build)); empty once usable.
+    unintegrated: Vec<u32>,
+    /// Quadrature points of the last of `unintegrated` already summed.
+    integrated_points: usize,
+}
+
+impl Xfem {
+    /// Builds everything for the given cracks (tips already classified)
+    /// but the stiffness of the enriched elements that could not be reused
+    /// (the costly part of a rebuild after growth): [`integrate`](Self::integrate)
+    /// computes it, at once or in chunks (so that the workbench can spread a
+    /// rebuild over frames); solvers need it complete.
+    pub fn build(
+        mesh: Mesh,
+        elastic: Elastic,
+        thickness: f64,
+        cracks: Vec<Crack>,
+        fixed: &[bool],
+        params: XfemParams,
+        reuse: Option<&Reuse>,
+    ) -> Self {
+        let h = mesh.h();
+        let funcs = EnrichmentFunctions::new(cracks, 1e-9 * h);
+        let segs = element_segments(&mesh, &funcs.cracks);
+        let tips = element_tips(&mesh, &funcs.cracks);
+        let node_enr = classify_nodes(&mesh, &funcs, &segs, params);
+        let dofs = DofMap::new(node_enr, fixed);
+        let mut x = Self {
+            k0: regular_stiffness(&mesh, &elastic, thickness),
+            mesh,
+            elastic,
+            thickness,
+            params,
+            funcs,
+            dofs,
+            slot: Vec::new(),
+            enriched: Vec::new(),
+            faces: Vec::new(),
+            pattern: OnceCell::new(),
+            unintegrated: Vec::new(),
+            integrated_points: 0,
+        };
+        let far = reuse.map_or(0.0, |r| {
+            r.previous
+                .funcs
+                .cracks
+                .iter()
+                .chain(&x.funcs.cracks)
+                .flat_map(|c| c.free_tips().map(|k| params.zone_radius(c, k, x.mesh.h())))
+                .fold(0.0, f64::max)
+                + 2.0 * x.mesh.h()
+        });
+        let previous = reuse.map(|r| Previous {
+            slot: &r.previous.slot,
+            enriched: &r.previous.enriched,
+            moved: &r.moved,
+            far,
+        });
+        let elements = build_elements(&x.mesh, &x.funcs, &x.dofs, &segs, &tips, previous.as_ref());
+        x.slot = elements.slot;
+        x.enriched = elements.enriched;
+        x.unintegrated = elements.unintegrated;
+        x.faces = build_faces(&x.mesh, &x.funcs, &x.slot, &x.enriched, x.thickness);
+        x
+    }
+
+    /// Integrates the stiffness of the enriched elements still without one,
+    /// over at most `max_points` quadrature points (an element may take
+    /// several calls: near a tip one can have 20 000 points); returns
+    /// whether all have their stiffness now.
+    pub fn integrate(&mut self, max_points: usize) -> bool {
+        let mut left = max_points;
+        while left > 0
+            && let Some(&slot) = self.unintegrated.last()
+        {
+            let slot = slot as usize;
+            let (from, n) = (self.integrated_points, self.enriched[slot].qps.len());
+            let to = n.min(from.saturating_add(left));
+            let mut k = if from == 0 {
+                let nd = 2 * self.enriched[slot].scalars.len();
+                DMatrix::zeros(nd, nd)
+            } else {
+                std::mem::take(&mut self.enriched[slot].k)
+            };
+            add_stiffness(
+                &self.mesh,
+                &self.funcs,
+                &self.elastic,
+                self.thickness,
+                &self.enriched[slot],
+                from..to,
+                &mut k,
+            );
+            self.enriched[slot].k = k;
+            left -= to - from;
+            if to == n {
+                self.unintegrated.pop();
+                self.integrated_points = 0;
+            } else {
+                self.integrated_points = to;
+            }
+        }
+        self.unintegrated.is_empty()
+    }
+
+    /// Whether every element's stiffness is integrated (needed by every
+    /// solver; see [`build`](Self::build)).
+    pub fn is_integrated(&self) -> bool {
+        self.unintegrated.is_empty()
+    }
+
+    /// Quadrature points still to be summed by [`integrate`](Self::integrate).
+    pub fn points_to_integrate(&self) -> usize {
+        self.unintegrated
+            .iter()
+            .map(|&s| self.enriched[s as usize].qps.len())
+            .sum::<usize>()
+            - self.integrated_points
+    }
+
+    /// Whether [`pattern`](Self::pattern) has been computed.
+    pub fn has_pattern(&self) -> bool {
+        self.pattern.get().is_some()
+    }
+
+    /// Values and gradients of the scalar shape functions of an enriched
+    /// element at `x`.
+    pub fn eval_enriched(
+        &self,
+        el: &EnrichedElement,
+        x: P2,
+        vals: &mut Vec<f64>,
+        grads: &mut Vec<P2>,
+    ) {
+        eval_scalars(&self.mesh, &self.funcs, el, x, None, vals, grads);
+    }
+
+    /// The same at a point of crack `face.0`, taken on side `face.1` (±1).
+    pub fn eval_enriched_sided(
+        &self,
+        el: &EnrichedElement,
+        x: P2,
+        face: Option<(usize, f64)>,
+        vals: &mut Vec<f64>,
+        grads: &mut Vec<P2>,
+    ) {
+        eval_scalars(&self.mesh, &self.funcs, el, x, face, vals, grads);
+    }
+
+    /// Scalar shape functions of any element at `x` and the element's free
+    /// DOFs (two per scalar).
+    pub fn eval_element(
+        &self,
+        e: usize,
+        x: P2,
+        vals: &mut Vec<f64>,
+        grads: &mut Vec<P2>,
+        dofs: &mut Vec<u32>,
+    ) {
+        dofs.clear();
+        let slot = self.slot[e];
+        if slot == REGULAR {
+            let (n, dn) = self.mesh.shape(e, x);
+            vals.clear();
+            grads.clear();
+            vals.extend_from_slice(&n);
+            grads.extend_from_slice(&dn);
+            dofs.extend_from_slice(&self.regular_dofs(e));
+        } else {
+            let el = &self.enriched[slot as usize];
+            self.eval_enriched(el, x, vals, grads);
+            dofs.extend_from_slice(&el.dofs);
+        }
+    }
+
+    /// Free DOFs of an ordinary element, order `x0 y0 … x3 y3`.
+    pub fn regular_dofs(&self, e: usize) -> [u32; 8] {
+        let nodes = self.mesh.element_nodes(e);
+        let mut d = [FIXED; 8];
+        for (i, &n) in nodes.iter().enumerate() {
+            d[2 * i] = self.dofs.std_free(n, 0);
+            d[2 * i + 1] = self.dofs.std_free(n, 1);
+        }
+        d
+    }
+    /// The stiffness pattern with its symbolic factorisation (computed once).
+    /// Its elements are the regular elements in mesh order, then the
+    /// enriched ones in slot order.
+    pub fn pattern(&self) -> Result<&Pattern, SolveError> {
+        if let Some(p) = self.pattern.get() {
+            return Ok(p);
+        }
+        let n_elements = self.mesh.element_count();
+        let mut dofs = Vec::with_capacity(8 * n_elements);
+        let mut starts = Vec::with_capacity(n_elements + 1);
+        starts.push(0);
+        for e in 0..n_elements {
+            if self.slot[e] == REGULAR {
+                dofs.extend_from_slice(&self.regular_dofs(e));
+                starts.push(dofs.len());
+            }
+        }
+        for el in &self.enriched {
+            dofs.extend_from_slice(&el.dofs);
+            starts.push(dofs.len());
+        }
+        let p = Pattern::new(self.n_free(), &dofs, &starts)?;
+        Ok(self.pattern.get_or_init(|| p))
+    }
+
+    /// Number of free DOFs.
+    pub fn n_free(&self) -> usize {
+        self.dofs.n_free
+    }
+}

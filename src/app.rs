@@ -3,8 +3,9 @@
 
 use std::sync::{Arc, Mutex};
 
+use cdca::CriterionCurve;
+use cdca::scene::SceneFile;
 use cdca::scene::SolverKind;
-use cdca::{CriterionCurve, Scene};
 use egui::Ui;
 use web_time::{Duration, Instant};
 
@@ -34,7 +35,7 @@ pub struct Options {
     /// Re-solve after an edit when the solve is quick.
     pub auto_solve: bool,
     /// The scene to start on (None: the default scene).
-    pub scene: Option<Scene>,
+    pub scene: Option<SceneFile>,
     /// Where that scene came from.
     pub scene_source: String,
     pub view: ViewSettings,
@@ -75,7 +76,7 @@ pub struct TipCurve {
 
 /// The whole application.
 pub struct WorkbenchApp {
-    pub(crate) scene: Scene,
+    pub(crate) scene: SceneFile,
     pub(crate) scene_source: String,
     pub(crate) runner: Runner,
     pub(crate) undo: UndoStack,
@@ -142,7 +143,7 @@ impl WorkbenchApp {
     /// starts `run` after the first solve.
     pub fn launch(
         cc: &eframe::CreationContext<'_>,
-        scene: Option<(String, Scene)>,
+        scene: Option<(String, SceneFile)>,
         run: Option<StartRun>,
     ) -> Self {
         let saved = Persisted::load(cc.storage);
@@ -152,7 +153,7 @@ impl WorkbenchApp {
             let scene = saved
                 .scene_json
                 .as_deref()
-                .and_then(|j| Scene::from_json(j).ok());
+                .and_then(|j| cdca::Scene::from_json(j).map(cdca::Scene::into_file).ok());
             let source = if scene.is_some() && !saved.scene_source.is_empty() {
                 saved.scene_source
             } else {
@@ -171,7 +172,7 @@ impl WorkbenchApp {
 
     // --- read access for tests and panels -------------------------------
 
-    pub fn scene(&self) -> &Scene {
+    pub fn scene(&self) -> &SceneFile {
         &self.scene
     }
     pub fn message(&self) -> Option<&Message> {

@@ -1,7 +1,7 @@
 //! Applying the UI's commands to the app: edits with undo, opening scenes,
 //! solver actions and exports.
 
-use cdca::Scene;
+use cdca::scene::SceneFile;
 
 use crate::app::WorkbenchApp;
 use crate::command::{Command, Export};
@@ -83,12 +83,15 @@ impl WorkbenchApp {
             Command::SetAccelerateGrowth(on) => self.runner.accelerate_growth = on,
             Command::RunStudy(setup) => {
                 self.runner.mode = RunMode::Paused;
-                match Study::new(
-                    &self.scene,
-                    &setup.path,
-                    setup.values(),
-                    self.runner.accelerate_growth,
-                ) {
+                let base = cdca::Scene::try_from(self.scene.clone()).map_err(|e| e.to_string());
+                match base.and_then(|base| {
+                    Study::new(
+                        &base,
+                        &setup.path,
+                        setup.values(),
+                        self.runner.accelerate_growth,
+                    )
+                }) {
                     Ok(study) => self.study = Some(study),
                     Err(e) => {
                         self.message = Some(Message::Error(format!("The study cannot run: {e}")));
@@ -108,7 +111,13 @@ impl WorkbenchApp {
             }
             Command::CompareSolvers { time_cap } => {
                 self.runner.mode = RunMode::Paused;
-                self.race = Some(Race::new(&self.scene, time_cap));
+                match cdca::Scene::try_from(self.scene.clone()) {
+                    Ok(scene) => self.race = Some(Race::new(&scene, time_cap)),
+                    Err(e) => {
+                        let e = format!("The race cannot run: {e}");
+                        self.message = Some(Message::Error(e));
+                    }
+                }
             }
             Command::SelectTip(tip) => self.selected_tip = tip,
             Command::DismissMessage => self.message = None,
@@ -207,7 +216,7 @@ impl WorkbenchApp {
 
     /// Opens a scene file's text; a bad file leaves everything as it was.
     fn open_scene_text(&mut self, source: String, text: &str) {
-        match Scene::from_json(text) {
+        match cdca::Scene::from_json(text).map(cdca::Scene::into_file) {
             Ok(scene) => {
                 self.undo.record(&self.scene, false);
                 self.scene = scene;
@@ -295,7 +304,7 @@ impl WorkbenchApp {
 }
 
 /// A file name from the scene's name: lowercase letters, digits and `_`.
-fn file_stem(scene: &Scene) -> String {
+fn file_stem(scene: &SceneFile) -> String {
     let stem: String = scene
         .name
         .chars()

@@ -1,7 +1,7 @@
 //! What the UI asks for. Panels and the canvas read the app's state and push
 //! commands; the app applies them once per frame, before any solver work.
 
-use cdca::Scene;
+use cdca::scene::SceneFile;
 
 use crate::study::StudySetup;
 
@@ -31,7 +31,7 @@ pub enum Command {
     /// progress: consecutive ongoing edits form one undo step and the
     /// re-solve waits until the drag ends.
     SetScene {
-        scene: Box<Scene>,
+        scene: Box<SceneFile>,
         ongoing: bool,
     },
     /// A drag of scene edits ended: the next edit is a new undo step, and

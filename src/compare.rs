@@ -379,7 +379,7 @@ mod tests {
         let mut scene = default_scene();
         scene.mesh.nx = 12;
         scene.mesh.ny = 12;
-        let mut race = Race::new(&scene, 0.5);
+        let mut race = Race::new(&cdca::Scene::try_from(scene).expect("valid"), 0.5);
         for _ in 0..100_000 {
             if race.finished() {
                 break;
@@ -417,7 +417,7 @@ mod tests {
         let mut scene = default_scene();
         scene.mesh.nx = 40;
         scene.mesh.ny = 40;
-        let race = Race::new(&scene, 1.0);
+        let race = Race::new(&cdca::Scene::try_from(scene).expect("valid"), 1.0);
         let spec = race.spec(&RACERS[2]);
         let expected = 2.0 / (1.0 + (std::f64::consts::PI / 40.0).sin());
         assert!((spec.omega - expected).abs() < 1e-15);

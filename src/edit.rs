@@ -1,8 +1,8 @@
 //! Editing the scene on the canvas: the active tool, the crack being drawn,
 //! the point being dragged, and the undo/redo stack of scene snapshots.
 
-use cdca::Scene;
 use cdca::scene::CrackSpec;
+use cdca::scene::SceneFile;
 
 /// What a primary click on the canvas does.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -47,7 +47,7 @@ impl Editor {
 }
 
 /// `scene` with vertex `v` moved to `to`. An arc crack becomes a polyline.
-pub fn move_vertex(scene: &Scene, v: VertexRef, to: [f64; 2]) -> Scene {
+pub fn move_vertex(scene: &SceneFile, v: VertexRef, to: [f64; 2]) -> SceneFile {
     let mut s = scene.clone();
     let h = s.element_size();
     if let Some(crack) = s.cracks.get_mut(v.crack) {
@@ -64,8 +64,8 @@ pub fn move_vertex(scene: &Scene, v: VertexRef, to: [f64; 2]) -> Scene {
 /// Snapshots of the scene before each edit.
 #[derive(Debug, Default)]
 pub struct UndoStack {
-    undo: Vec<Scene>,
-    redo: Vec<Scene>,
+    undo: Vec<SceneFile>,
+    redo: Vec<SceneFile>,
     /// The last recorded edit was an ongoing drag: further ongoing edits
     /// belong to the same undo step.
     coalescing: bool,
@@ -77,7 +77,7 @@ const MAX_UNDO: usize = 200;
 impl UndoStack {
     /// Records `before` as the state to return to, unless this edit
     /// continues an ongoing drag.
-    pub fn record(&mut self, before: &Scene, ongoing: bool) {
+    pub fn record(&mut self, before: &SceneFile, ongoing: bool) {
         if !(self.coalescing && ongoing) {
             self.undo.push(before.clone());
             if self.undo.len() > MAX_UNDO {
@@ -94,14 +94,14 @@ impl UndoStack {
     }
 
     /// The scene to go back to, given the current one.
-    pub fn undo(&mut self, current: &Scene) -> Option<Scene> {
+    pub fn undo(&mut self, current: &SceneFile) -> Option<SceneFile> {
         self.coalescing = false;
         let previous = self.undo.pop()?;
         self.redo.push(current.clone());
         Some(previous)
     }
 
-    pub fn redo(&mut self, current: &Scene) -> Option<Scene> {
+    pub fn redo(&mut self, current: &SceneFile) -> Option<SceneFile> {
         self.coalescing = false;
         let next = self.redo.pop()?;
         self.undo.push(current.clone());
@@ -122,8 +122,8 @@ mod tests {
     use super::*;
     use crate::scenes::default_scene;
 
-    fn renamed(name: &str) -> Scene {
-        Scene {
+    fn renamed(name: &str) -> SceneFile {
+        SceneFile {
             name: name.to_owned(),
             ..default_scene()
         }

@@ -4,8 +4,8 @@
 
 use std::fmt::Write as _;
 
-use cdca::Scene;
 use cdca::report::{GrowthStepReport, Mode};
+use cdca::scene::SceneFile;
 
 use crate::field::von_mises;
 
@@ -73,7 +73,7 @@ pub fn history_csv(history: &[GrowthStepReport]) -> String {
 /// The Q4 mesh with point data `displacement` (m) and cell data stresses
 /// (Pa) sampled at cell centres; values the solver cannot give are 0.
 pub fn fields_vtu(
-    scene: &Scene,
+    scene: &SceneFile,
     displacement_at: impl Fn([f64; 2]) -> Option<[f64; 2]>,
     stress_at: impl Fn([f64; 2]) -> Option<[f64; 3]>,
 ) -> String {

@@ -14,7 +14,7 @@ after the first solve.";
 #[cfg(not(target_arch = "wasm32"))]
 struct Launch {
     /// (file name, scene) to open.
-    scene: Option<(String, cdca::Scene)>,
+    scene: Option<(String, cdca::scene::SceneFile)>,
     run: Option<cdca_workbench::StartRun>,
 }
 
@@ -49,6 +49,7 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Option<Launch>, 
                 let text = std::fs::read_to_string(path)
                     .map_err(|e| format!("cannot read {path}: {e}"))?;
                 let scene = cdca::Scene::from_json(&text)
+                    .map(cdca::Scene::into_file)
                     .map_err(|e| format!("{path} is not a valid scene: {e}"))?;
                 let name = std::path::Path::new(path)
                     .file_name()

@@ -1,7 +1,7 @@
 //! Drives the solver inside the frame budget: the run mode, the
 //! simulation, and the copies of its state that the UI shows.
 
-use cdca::scene::SolverKind;
+use cdca::scene::{SceneFile, SolverKind};
 use cdca::{Scene, Simulation};
 use web_time::{Duration, Instant};
 
@@ -52,6 +52,8 @@ pub fn growth_solver(spec: &cdca::scene::SolverSpec, accelerate: bool) -> cdca::
 /// so bools.)
 #[allow(clippy::struct_excessive_bools)]
 pub struct Runner {
+    /// The edited scene, checked (None while it is invalid).
+    checked: Option<Scene>,
     sim: Option<Simulation>,
     pub mode: RunMode,
     /// `start_relaxation` was called on the current simulation.
@@ -93,6 +95,7 @@ pub struct Runner {
 impl Default for Runner {
     fn default() -> Self {
         Self {
+            checked: None,
             sim: None,
             mode: RunMode::Paused,
             relaxation_started: false,
@@ -118,9 +121,11 @@ impl Default for Runner {
 pub const QUICK_SOLVE_SECONDS: f64 = 0.25;
 
 impl Runner {
-    /// Forgets the simulation after an edit: `scene` is only validated
-    /// (cheap); the discretisation is built when solver work is asked for.
-    pub fn invalidate(&mut self, scene: &Scene) -> Result<(), String> {
+    /// Forgets the simulation after an edit: `scene` is only checked
+    /// (cheap; `Scene::try_from`); the discretisation is built when solver
+    /// work is asked for.
+    pub fn invalidate(&mut self, scene: &SceneFile) -> Result<(), String> {
+        self.checked = None;
         self.sim = None;
         self.mode = RunMode::Paused;
         self.relaxation_started = false;
@@ -128,14 +133,18 @@ impl Runner {
         self.view.clear();
         self.field.clear();
         self.stale = true;
-        scene.validate().map_err(|e| e.to_string())
+        self.checked = Some(Scene::try_from(scene.clone()).map_err(|e| e.to_string())?);
+        Ok(())
     }
 
-    /// Builds a simulation of `scene` (validated; nothing solved yet).
-    pub fn rebuild(&mut self, scene: &Scene) -> Result<(), String> {
+    /// Builds a simulation of `scene` (checked; nothing solved yet).
+    pub fn rebuild(&mut self, scene: &SceneFile) -> Result<(), String> {
         self.invalidate(scene)?;
+        let Some(valid) = self.checked.clone() else {
+            unreachable!("invalidate keeps the checked scene or fails")
+        };
         let start = Instant::now();
-        let sim = Simulation::new(scene.clone()).map_err(|e| e.to_string())?;
+        let sim = Simulation::new(valid).map_err(|e| e.to_string())?;
         self.last_build_seconds = start.elapsed().as_secs_f64();
         self.sim = Some(sim);
         self.sweeps_per_call = 1;
@@ -156,7 +165,7 @@ impl Runner {
     /// Whether a re-solve of `scene` after an edit is cheap enough to do
     /// unasked: the direct solver, and the last build and solve was quick
     /// (before any, meshes up to 80 × 80).
-    pub fn solve_is_quick(&self, scene: &Scene) -> bool {
+    pub fn solve_is_quick(&self, scene: &SceneFile) -> bool {
         scene.solver.kind == SolverKind::Direct
             && self
                 .last_solve_seconds
@@ -202,8 +211,10 @@ impl Runner {
         if !self.growth_ready && sim.history().is_empty() {
             let spec = growth_solver(&sim.scene().solver, self.accelerate_growth);
             if spec != sim.scene().solver || sim.is_solved() || sim.is_relaxing() {
-                let mut scene = sim.scene().clone();
-                scene.solver = spec;
+                let scene = sim
+                    .scene()
+                    .edit(|s| s.solver = spec)
+                    .map_err(|e| e.to_string())?;
                 let start = Instant::now();
                 let sim = Simulation::new(scene).map_err(|e| e.to_string())?;
                 self.last_build_seconds = start.elapsed().as_secs_f64();
@@ -224,7 +235,7 @@ impl Runner {
 
     /// The solver growth uses (or will use) on this simulation, or on a
     /// simulation of `scene` when none is built yet.
-    pub fn growth_solver_kind(&self, scene: &Scene) -> SolverKind {
+    pub fn growth_solver_kind(&self, scene: &SceneFile) -> SolverKind {
         match &self.sim {
             Some(sim) if self.growth_ready || !sim.history().is_empty() => sim.scene().solver.kind,
             Some(sim) => growth_solver(&sim.scene().solver, self.accelerate_growth).kind,

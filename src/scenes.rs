@@ -1,7 +1,7 @@
 //! Scenes bundled with the binary (`assets/scenes/*.json`), embedded so the
 //! web build needs no file system.
 
-use cdca::Scene;
+use cdca::scene::SceneFile;
 
 /// A scene shipped with the workbench.
 #[derive(Clone, Copy, Debug)]
@@ -78,21 +78,25 @@ pub const BUNDLED: &[Bundled] = &[
 
 /// The default scene (a single closed flaw in the 30 mm specimen under
 /// uniaxial compression, growth to failure).
-pub fn default_scene() -> Scene {
+pub fn default_scene() -> SceneFile {
     BUNDLED
         .iter()
-        .find_map(|b| Scene::from_json(b.json).ok())
+        .find_map(|b| {
+            cdca::Scene::from_json(b.json)
+                .map(cdca::Scene::into_file)
+                .ok()
+        })
         .unwrap_or_else(fallback_scene)
 }
 
 /// A scene built in code, so the app always has something to show even if
 /// every embedded file were broken (a bug the tests above catch).
-fn fallback_scene() -> Scene {
+fn fallback_scene() -> SceneFile {
     use cdca::scene::{
         Boundary, CriterionSpec, GrowthSpec, Material, MeshSpec, Plane, SideBc, SolverSpec,
         Specimen,
     };
-    Scene {
+    SceneFile {
         name: "Plate".to_owned(),
         description: String::new(),
         specimen: Specimen {
@@ -137,7 +141,9 @@ mod tests {
     fn every_bundled_scene_parses() {
         for b in BUNDLED {
             assert!(
-                Scene::from_json(b.json).is_ok(),
+                cdca::Scene::from_json(b.json)
+                    .map(cdca::Scene::into_file)
+                    .is_ok(),
                 "{} does not parse",
                 b.title
             );
@@ -148,7 +154,11 @@ mod tests {
     fn bundled_titles_are_the_scene_names() {
         for b in BUNDLED {
             assert_eq!(
-                Scene::from_json(b.json).map(|s| s.name).ok().as_deref(),
+                cdca::Scene::from_json(b.json)
+                    .map(cdca::Scene::into_file)
+                    .map(|s| s.name)
+                    .ok()
+                    .as_deref(),
                 Some(b.title)
             );
         }

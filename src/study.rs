@@ -195,11 +195,12 @@ impl Study {
     }
 
     fn build(&self, value: f64) -> Result<Simulation, String> {
-        let mut scene = self
+        let accelerate = self.accelerate;
+        let scene = self
             .base
             .with_param(&self.path, value)
+            .and_then(|s| s.edit(|f| f.solver = growth_solver(&f.solver, accelerate)))
             .map_err(|e| e.to_string())?;
-        scene.solver = growth_solver(&scene.solver, self.accelerate);
         Simulation::new(scene).map_err(|e| e.to_string())
     }
 
@@ -293,7 +294,7 @@ mod tests {
 
     #[test]
     fn a_bad_path_is_refused_with_a_reason() {
-        let scene = crate::scenes::default_scene();
+        let scene = cdca::Scene::try_from(crate::scenes::default_scene()).expect("valid");
         let err = Study::new(&scene, "cracks.0.nothing", vec![1.0], true)
             .err()
             .unwrap_or_default();

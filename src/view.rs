@@ -3,8 +3,9 @@
 //! of what they show), edit how things are shown in place through a
 //! [`ViewState`], and push [`crate::Command`]s for everything else.
 
+use cdca::CriterionCurve;
+use cdca::scene::SceneFile;
 use cdca::scene::SolverKind;
-use cdca::{CriterionCurve, Scene};
 
 use crate::canvas::ViewSettings;
 use crate::compare::Race;
@@ -37,7 +38,7 @@ pub enum PlotTab {
 impl PlotTab {
     /// The plot that has something to show for `scene` before any run: the
     /// residual for an iterative solver, the SIFs for the direct one.
-    pub fn fitting(scene: &Scene) -> Self {
+    pub fn fitting(scene: &SceneFile) -> Self {
         if scene.solver.kind == cdca::scene::SolverKind::Direct {
             Self::Sifs
         } else {
@@ -69,7 +70,7 @@ pub struct RunStatus {
 
 /// What the panels read.
 pub struct AppView<'a> {
-    pub scene: &'a Scene,
+    pub scene: &'a SceneFile,
     /// Where the scene came from (file name or bundled title).
     pub scene_source: &'a str,
     pub solution: &'a SolutionView,

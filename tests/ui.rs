@@ -54,7 +54,7 @@ fn harness(options: Options) -> Harness<'static, WorkbenchApp> {
 }
 
 /// Edits a copy of the open scene and applies it, as a panel would.
-fn edit_scene(h: &mut Harness<'_, WorkbenchApp>, edit: impl FnOnce(&mut cdca::Scene)) {
+fn edit_scene(h: &mut Harness<'_, WorkbenchApp>, edit: impl FnOnce(&mut cdca::scene::SceneFile)) {
     let mut s = h.state().scene().clone();
     edit(&mut s);
     h.state_mut().push(Command::SetScene {

@@ -5,7 +5,7 @@ mod field_mesh;
 mod symbols;
 mod view;
 
-use cdca::Scene;
+use cdca::scene::SceneFile;
 use egui::{Align2, Color32, FontId, Key, PointerButton, Pos2, Response, Sense, Stroke, Ui};
 use serde::{Deserialize, Serialize};
 
@@ -61,7 +61,7 @@ impl Default for ViewSettings {
 
 /// What the canvas shows this frame.
 pub struct CanvasInput<'a> {
-    pub scene: &'a Scene,
+    pub scene: &'a SceneFile,
     pub solution: &'a SolutionView,
     pub field: Option<&'a FieldSamples>,
     pub settings: &'a ViewSettings,
@@ -138,7 +138,7 @@ impl Canvas {
         }
     }
 
-    fn vertex_near(&self, scene: &Scene, p: Pos2) -> Option<(usize, usize)> {
+    fn vertex_near(&self, scene: &SceneFile, p: Pos2) -> Option<(usize, usize)> {
         let h = scene.element_size();
         let mut best: Option<((usize, usize), f32)> = None;
         for (i, crack) in scene.cracks.iter().enumerate() {
@@ -156,7 +156,7 @@ impl Canvas {
     }
 
     /// A point inside the specimen (clamped half a percent from the sides).
-    fn clamp_inside(scene: &Scene, p: [f64; 2]) -> [f64; 2] {
+    fn clamp_inside(scene: &SceneFile, p: [f64; 2]) -> [f64; 2] {
         let (w, h) = (scene.specimen.width, scene.specimen.height);
         let m = 0.005 * w.min(h);
         [p[0].clamp(m, w - m), p[1].clamp(m, h - m)]
@@ -219,7 +219,7 @@ impl Canvas {
         }
     }
 
-    fn crack_near(&self, scene: &Scene, p: Pos2) -> Option<usize> {
+    fn crack_near(&self, scene: &SceneFile, p: Pos2) -> Option<usize> {
         let h = scene.element_size();
         scene.cracks.iter().position(|c| {
             c.polyline(h).windows(2).any(|w| {
@@ -238,7 +238,7 @@ impl Canvas {
         &mut self,
         ui: &Ui,
         response: &Response,
-        scene: &Scene,
+        scene: &SceneFile,
         editor: &mut Editor,
         cmds: &mut Vec<Command>,
     ) {
@@ -386,7 +386,7 @@ impl Canvas {
 
 /// A magnification that shows the largest displacement as 5 % of the
 /// specimen's larger side.
-fn auto_deform_scale(samples: &FieldSamples, scene: &Scene) -> f64 {
+fn auto_deform_scale(samples: &FieldSamples, scene: &SceneFile) -> f64 {
     let max_u = samples
         .samples
         .iter()

@@ -2,8 +2,9 @@
 //! symbols, cracks, tips and the contact state along the cracks.
 
 use cdca::report::{Mode, TipReport};
+use cdca::scene::SceneFile;
 use cdca::scene::{Fix, SideBc};
-use cdca::{ContactPointView, ContactState, Scene};
+use cdca::{ContactPointView, ContactState};
 use egui::{Align2, Color32, FontId, Painter, Pos2, Shape, Stroke, Vec2, vec2};
 
 use super::view::ViewTransform;
@@ -32,7 +33,7 @@ pub fn tip_color(mode: Mode) -> Color32 {
     }
 }
 
-pub fn paint_outline(painter: &Painter, view: &ViewTransform, scene: &Scene, fill: bool) {
+pub fn paint_outline(painter: &Painter, view: &ViewTransform, scene: &SceneFile, fill: bool) {
     let (w, h) = (scene.specimen.width, scene.specimen.height);
     let rect = egui::Rect::from_two_pos(
         view.screen_from_world([0.0, 0.0]),
@@ -49,7 +50,7 @@ pub fn paint_outline(painter: &Painter, view: &ViewTransform, scene: &Scene, fil
     );
 }
 
-pub fn paint_mesh_lines(painter: &Painter, view: &ViewTransform, scene: &Scene) {
+pub fn paint_mesh_lines(painter: &Painter, view: &ViewTransform, scene: &SceneFile) {
     let (w, h) = (scene.specimen.width, scene.specimen.height);
     let (nx, ny) = (scene.mesh.nx, scene.mesh.ny);
     let stroke = Stroke::new(0.5, Color32::from_black_alpha(70));
@@ -83,7 +84,7 @@ struct Side {
     bc: SideBc,
 }
 
-fn sides(scene: &Scene) -> [Side; 4] {
+fn sides(scene: &SceneFile) -> [Side; 4] {
     let (w, h) = (scene.specimen.width, scene.specimen.height);
     let b = &scene.boundary;
     [
@@ -116,7 +117,7 @@ fn sides(scene: &Scene) -> [Side; 4] {
 
 /// Traction arrows (compression points into the specimen), roller and
 /// fixed symbols, point supports.
-pub fn paint_boundary(painter: &Painter, view: &ViewTransform, scene: &Scene) {
+pub fn paint_boundary(painter: &Painter, view: &ViewTransform, scene: &SceneFile) {
     let font = FontId::proportional(12.0);
     for side in sides(scene) {
         let out = view.screen_vec(side.outward).normalized();
@@ -289,7 +290,7 @@ pub fn paint_tips(
 pub fn paint_handles(
     painter: &Painter,
     view: &ViewTransform,
-    scene: &Scene,
+    scene: &SceneFile,
     hovered: Option<(usize, usize)>,
 ) {
     let h = scene.element_size();

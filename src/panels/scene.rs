@@ -1,11 +1,12 @@
 //! Scene parameters: specimen and mesh, material, boundary, cracks,
 //! criterion and growth. Only what the current scene can use is shown.
 
+use cdca::ContactState;
 use cdca::fracture::criterion::radius_and_strength;
+use cdca::scene::SceneFile;
 use cdca::scene::{
     CriterionKind, Fix, GrowthControl, Material, Plane, Sampling, ShearStrength, SideBc,
 };
-use cdca::{ContactState, Scene};
 use egui::{CollapsingHeader, Grid, Ui};
 
 use super::widgets::{EditTracker, choice, count_row, optional_row, quantity_row};
@@ -18,7 +19,7 @@ const MM: f64 = 1.0 / MM_PER_M;
 
 pub fn scene_ui(
     ui: &mut Ui,
-    scene: &Scene,
+    scene: &SceneFile,
     solution: &SolutionView,
     editor: &mut Editor,
     cmds: &mut Vec<Command>,
@@ -46,7 +47,7 @@ pub fn scene_ui(
     }
 }
 
-fn specimen_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
+fn specimen_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
     CollapsingHeader::new("Specimen and mesh")
         .default_open(true)
         .show(ui, |ui| {
@@ -80,7 +81,7 @@ fn specimen_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
         });
 }
 
-fn material_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
+fn material_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
     let comprehensive = s.criterion.kind == CriterionKind::Comprehensive;
     CollapsingHeader::new("Material")
         .default_open(true)
@@ -179,7 +180,7 @@ fn side_ui(ui: &mut Ui, t: &mut EditTracker, name: &str, bc: &mut SideBc) {
     }
 }
 
-fn boundary_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
+fn boundary_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
     CollapsingHeader::new("Loads and supports")
         .default_open(true)
         .show(ui, |ui| {
@@ -217,7 +218,7 @@ fn boundary_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
 
 fn cracks_ui(
     ui: &mut Ui,
-    s: &mut Scene,
+    s: &mut SceneFile,
     solution: &SolutionView,
     editor: &mut Editor,
     t: &mut EditTracker,
@@ -318,7 +319,7 @@ fn cracks_ui(
         });
 }
 
-fn criterion_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
+fn criterion_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
     CollapsingHeader::new("Fracture criterion")
         .default_open(false)
         .show(ui, |ui| {
@@ -377,7 +378,7 @@ fn criterion_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
         });
 }
 
-fn growth_ui(ui: &mut Ui, s: &mut Scene, t: &mut EditTracker) {
+fn growth_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
     let (r0, _) = radius_and_strength(s.criterion.r0, &s.material);
     let r0 = cdca::fracture::growth::default_increment(r0, s.element_size());
     CollapsingHeader::new("Growth")

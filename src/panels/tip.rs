@@ -2,9 +2,10 @@
 //! plot of σ_θθ(θ, r0) and |τ_rθ(θ, r0)| with their thresholds and the
 //! chosen angle.
 
+use cdca::CriterionCurve;
 use cdca::report::{Mode, TipReport};
 use cdca::scene::CriterionKind;
-use cdca::{CriterionCurve, Scene};
+use cdca::scene::SceneFile;
 use egui::{Color32, Grid, Ui};
 use egui_plot::{Legend, Line, LineStyle, Plot, PlotPoints};
 
@@ -108,7 +109,7 @@ fn circle(radius: f64) -> PlotPoints<'static> {
         .collect()
 }
 
-fn polar_plot_ui(ui: &mut Ui, scene: &Scene, tip: &TipReport, c: &CriterionCurve) {
+fn polar_plot_ui(ui: &mut Ui, scene: &SceneFile, tip: &TipReport, c: &CriterionCurve) {
     let comprehensive = scene.criterion.kind == CriterionKind::Comprehensive;
     let tau_abs: Vec<f64> = c.tau_rt.iter().map(|t| t.abs()).collect();
     // empty where the shear branch does not apply (open faces at the tip)

@@ -4,7 +4,6 @@
 
 use nalgebra::DMatrix;
 
-
 /// Extra stiffness on one enriched element (contact), in that element's DOF
 /// layout.
 #[derive(Clone, Debug, PartialEq)]
@@ -13,4 +12,3 @@ pub struct ElementBlock {
     pub slot: usize,
     pub k: DMatrix<f64>,
 }
-

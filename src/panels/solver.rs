@@ -320,7 +320,9 @@ fn status_ui(ui: &mut Ui, v: &AppView) {
             ui.label("Outcome");
             let text = format!("{o:?}").to_lowercase();
             if o == cdca::report::Outcome::NotConverged {
-                ui.colored_label(ui.visuals().warn_fg_color, text);
+                let why = view.history.iter().rev().find_map(|s| s.failure.clone());
+                ui.colored_label(ui.visuals().warn_fg_color, text)
+                    .on_hover_text(why.unwrap_or_default());
             } else {
                 ui.label(text);
             }

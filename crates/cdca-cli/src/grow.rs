@@ -43,8 +43,9 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     // solve exits 1
     match report.steps.iter().find(|s| !s.converged) {
         Some(s) => Err(CliError::Failure(format!(
-            "step {} did not converge (solver {} iterations, contact {} iterations, relative change {:.3e}): growth stopped",
-            s.step, s.solver_iterations, s.contact.iterations, s.contact.residual
+            "step {} did not converge: {}; growth stopped",
+            s.step,
+            s.failure.as_deref().unwrap_or("no reason recorded")
         ))),
         None => Ok(()),
     }

@@ -409,10 +409,13 @@ fn solve_exits_1_when_the_contact_iteration_is_capped() {
     assert_eq!(report["contact"]["converged"], false);
     assert_eq!(report["contact"]["iterations"], 1);
     assert_eq!(report["solver"]["converged"], true);
+    assert_eq!(report["contact"]["capped"], true);
     assert_eq!(run.stderr.trim_end().lines().count(), 1, "{}", run.stderr);
     assert!(
-        run.stderr
-            .starts_with("cdca: contact iteration did not converge"),
+        run.stderr.starts_with(
+            "cdca: the contact states were still changing after 1 contact iterations \
+             (solver.max_contact_iterations)"
+        ),
         "{}",
         run.stderr
     );
@@ -422,6 +425,10 @@ fn solve_exits_1_when_the_contact_iteration_is_capped() {
     assert_eq!(report["contact"]["converged"], true);
     assert!(report["contact"]["iterations"].as_u64() > Some(1));
     assert_eq!(report["contact"]["cycling"], 0);
+    assert!(
+        report["contact"].get("capped").is_none(),
+        "written only when true"
+    );
 }
 
 /// The automaton stopped at `max_iterations` prints its report (the last
@@ -444,7 +451,7 @@ fn solve_exits_1_with_the_report_when_the_automaton_is_capped() {
     );
     assert!(
         run.stderr
-            .contains("automaton solver did not converge: 25 iterations"),
+            .contains("the automaton solver stopped at 25 iterations with relative residual"),
         "{}",
         run.stderr
     );
@@ -466,8 +473,14 @@ fn grow_stops_with_not_converged_and_exits_1() {
     assert_eq!(steps.len(), 1, "growth went on after an unconverged step");
     assert_eq!(steps[0]["converged"], false);
     assert_eq!(steps[0]["grown"].as_array().map(Vec::len), Some(0));
+    // the reason names the failed test: the linear solver's cap, not the
+    // contact iteration's relative change
+    let failure = steps[0]["failure"].as_str().expect("failure");
+    assert!(failure.starts_with("the cg solver stopped at"), "{failure}");
     assert!(
-        run.stderr.contains("step 1 did not converge"),
+        run.stderr.contains(&format!(
+            "step 1 did not converge: {failure}; growth stopped"
+        )),
         "{}",
         run.stderr
     );

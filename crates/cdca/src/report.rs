@@ -57,6 +57,10 @@ pub struct ContactReport {
     /// Relative change of the displacement in the last contact iteration.
     #[serde(default)]
     pub residual: f64,
+    /// The iteration reached `solver.max_contact_iterations` with states
+    /// still changing (written only when true).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub capped: bool,
 }
 
 /// Stress intensity factors and the criterion's decision at one free tip.
@@ -143,6 +147,10 @@ pub struct GrowthStepReport {
     /// Every free tip's SIFs and decision at this step.
     #[serde(default)]
     pub tips: Vec<TipReport>,
+    /// Which convergence test failed, in words, when `converged` is false
+    /// (the reason growth stopped `not_converged`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub failure: Option<String>,
 }
 
 /// A tip that grew in a step: its new position and how it grew.
@@ -188,23 +196,38 @@ impl SolveReport {
         self.solver.converged && self.contact.converged
     }
 
-    /// One line saying which convergence test failed, if any.
+    /// One line naming the convergence test that failed, if any: the
+    /// linear solve's cap, the contact iteration's cap, or frozen points
+    /// that break the contact law once the states settled.
     pub fn failure(&self) -> Option<String> {
-        if !self.solver.converged {
+        let (s, c) = (&self.solver, &self.contact);
+        if !s.converged {
             Some(format!(
-                "{} solver did not converge: {} iterations, relative residual {:.3e}",
-                self.solver.kind, self.solver.iterations, self.solver.residual
+                "the {} solver stopped at {} iterations with relative residual {:.3e} \
+                 above its tolerance (solver.tolerance, solver.max_iterations)",
+                s.kind, s.iterations, s.residual
             ))
-        } else if !self.contact.converged {
+        } else if c.converged {
+            None
+        } else if c.capped {
             Some(format!(
-                "contact iteration did not converge: {} iterations, relative change {:.3e}, {} points cycling ({} breaking the contact law)",
-                self.contact.iterations,
-                self.contact.residual,
-                self.contact.cycling,
-                self.contact.violating
+                "the contact states were still changing after {} contact iterations \
+                 (solver.max_contact_iterations); last relative change of u {:.3e}, \
+                 {} points frozen for stick–slip cycling",
+                c.iterations, c.residual, c.cycling
+            ))
+        } else if c.violating > 0 {
+            Some(format!(
+                "{} of the {} face points frozen for stick–slip cycling break the \
+                 contact law at the final displacement (after {} contact iterations)",
+                c.violating, c.cycling, c.iterations
             ))
         } else {
-            None
+            Some(format!(
+                "the contact iteration did not settle ({} iterations, relative change \
+                 of u {:.3e})",
+                c.iterations, c.residual
+            ))
         }
     }
 }

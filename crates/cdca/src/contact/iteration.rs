@@ -49,6 +49,8 @@ pub struct ContactInfo {
     pub converged: bool,
     /// Relative displacement change of the last iteration.
     pub residual: f64,
+    /// Ended at `max_iterations` with states still changing.
+    pub capped: bool,
     /// Points frozen for cycling.
     pub cycling: usize,
     /// Frozen points whose kept state is not the one the return mapping
@@ -230,6 +232,7 @@ impl ContactSolve {
             self.info.converged = update.violating == 0;
             self.finished = true;
         } else if it >= self.params.max_contact_iterations() {
+            self.info.capped = true;
             self.finished = true;
         }
         Ok(self.status(self.finished))

@@ -4,6 +4,7 @@
 
 use web_time::Instant;
 
+use super::search::MAX_TRIALS;
 use super::state::Simulation;
 use crate::contact::law::{FaceState, carry_over, counts};
 use crate::discretisation::xfem::Reuse;
@@ -133,7 +134,8 @@ impl Simulation {
     /// After the step's solve: decide, extend the growing tips (or advance
     /// the load), and record the step. A solve that did not converge (or,
     /// `search_closed` false, a λ_cr search that did not close its bracket)
-    /// is recorded with `converged: false` and ends the growth with
+    /// is recorded with `converged: false` and the failed test in words
+    /// (`failure`), and ends the growth with
     /// [`Outcome::NotConverged`]: no tip is extended from an untrusted state
     /// (raise `solver.max_iterations` or `solver.max_contact_iterations`).
     ///
@@ -178,6 +180,13 @@ impl Simulation {
                 ..counts(&self.state.faces)
             },
             converged: report.converged() && search_closed,
+            failure: if search_closed {
+                report.failure()
+            } else {
+                Some(format!(
+                    "the λ_cr search did not close its bracket in {MAX_TRIALS} trials"
+                ))
+            },
             solver_iterations: report.solver.iterations,
             seconds: 0.0,
             crack_length: 0.0,

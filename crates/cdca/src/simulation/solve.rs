@@ -78,6 +78,7 @@ impl Simulation {
                 cycling: info.cycling,
                 violating: info.violating,
                 residual: info.residual,
+                capped: info.capped,
             },
             tips: self.scratch.tips.clone(),
         }

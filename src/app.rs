@@ -18,9 +18,11 @@ use crate::field::{FieldKey, FieldKind};
 use crate::frame_stats::FrameStats;
 use crate::panels;
 use crate::persist::Persisted;
-use crate::runner::{RunMode, Runner};
+use crate::run::RunMode;
+use crate::runner::Runner;
 use crate::scenes;
 use crate::study::{Study, StudySetup};
+use crate::task::{Progress, Task};
 pub use crate::view::Message;
 use crate::view::{AppView, PlotTab, RunStatus, ViewState};
 
@@ -96,6 +98,8 @@ pub struct WorkbenchApp {
     pub(crate) started: bool,
     pub(crate) frame_stats: FrameStats,
     frame_start: Option<Instant>,
+    /// Time the frame's tasks took, s.
+    frame_solver_seconds: f64,
     /// A canvas screenshot on its way (PNG export).
     pub(crate) screenshot: Arc<Mutex<Option<Arc<egui::ColorImage>>>>,
     pub(crate) screenshot_rect: Option<egui::Rect>,
@@ -128,6 +132,7 @@ impl WorkbenchApp {
             started: false,
             frame_stats: FrameStats::default(),
             frame_start: None,
+            frame_solver_seconds: 0.0,
             screenshot: Arc::default(),
             screenshot_rect: None,
         }
@@ -179,19 +184,19 @@ impl WorkbenchApp {
         self.message.as_ref()
     }
     pub fn run_mode(&self) -> RunMode {
-        self.runner.mode
+        self.runner.mode()
     }
     /// Residual samples of the current relaxation.
     pub fn residual_samples(&self) -> usize {
-        self.runner.view.residual_samples
+        self.runner.view().residual_samples
     }
     /// Crack polylines as simulated (grown), empty before a solve.
     pub fn simulated_cracks(&self) -> &[Vec<[f64; 2]>] {
-        &self.runner.view.cracks
+        &self.runner.view().cracks
     }
     /// Free tips after the last solve: (x, y) in m.
     pub fn tip_positions(&self) -> Vec<[f64; 2]> {
-        self.runner.view.tips.iter().map(|t| [t.x, t.y]).collect()
+        self.runner.view().tips.iter().map(|t| [t.x, t.y]).collect()
     }
     /// The inspected tip and whether its σ_θθ / τ_rθ curve is available.
     pub fn inspected_tip(&self) -> Option<(usize, bool)> {
@@ -204,21 +209,21 @@ impl WorkbenchApp {
     }
     /// How the growth run ended, if it has.
     pub fn growth_outcome(&self) -> Option<cdca::report::Outcome> {
-        self.runner.view.outcome
+        self.runner.view().outcome
     }
     pub fn growth_steps(&self) -> usize {
-        self.runner.view.history.len()
+        self.runner.view().history.len()
     }
     pub fn is_solved(&self) -> bool {
-        self.runner.view.solved
+        self.runner.view().solved
     }
     /// The sampled field currently shown, if complete.
     pub fn field_is_shown(&self) -> bool {
-        self.runner.field.current().is_some()
+        self.runner.field().current().is_some()
     }
     /// Fraction of the field being sampled, if one is.
     pub fn field_progress(&self) -> Option<f32> {
-        self.runner.field.progress()
+        self.runner.field().progress()
     }
     /// The solver race, running or finished.
     pub fn race(&self) -> Option<&Race> {
@@ -232,14 +237,14 @@ impl WorkbenchApp {
     /// canvas shows, if any.
     pub fn shown_field(&self) -> Option<(u64, usize)> {
         self.runner
-            .field
+            .field()
             .current()
             .map(|f| (f.key.version, f.samples.len()))
     }
     /// The stress samples of the field the canvas shows (σ_xx, σ_yy, τ_xy).
     pub fn shown_stresses(&self) -> Vec<[f64; 3]> {
         self.runner
-            .field
+            .field()
             .current()
             .map(|f| f.samples.iter().map(|s| s.stress).collect())
             .unwrap_or_default()
@@ -248,7 +253,7 @@ impl WorkbenchApp {
     /// residual, and the fraction of a rebuild's integration done: changes
     /// whenever the growth run advances.
     pub fn growth_progress(&self) -> (usize, usize, Option<f64>, Option<f64>) {
-        let v = &self.runner.view;
+        let v = self.runner.view();
         (
             v.history.len(),
             v.residual_samples,
@@ -262,7 +267,7 @@ impl WorkbenchApp {
     }
     /// The relaxation status shown, if any.
     pub fn relax_status(&self) -> Option<cdca::RelaxStatus> {
-        self.runner.view.relax
+        self.runner.view().relax
     }
     /// The plot the bottom panel shows.
     pub fn plot_tab(&self) -> PlotTab {
@@ -312,25 +317,49 @@ impl WorkbenchApp {
             }
         }
         self.finish_screenshot(ctx);
-        let deadline = Instant::now() + FRAME_BUDGET;
-        let key = self.field_key();
-        if let Some(c) = self.race.as_mut().filter(|c| !c.finished()) {
-            c.tick(deadline);
-        } else if let Some(s) = self.study.as_mut().filter(|s| !s.finished()) {
-            s.tick(deadline);
-        } else if let Err(e) = self.runner.tick(FRAME_BUDGET, key) {
-            self.message = Some(Message::Error(e));
-        }
+        self.run_tasks();
         self.refresh_tip_curve();
-        let busy = self.runner.mode != RunMode::Paused
+        let busy = self.runner.is_running()
             || self.race.as_ref().is_some_and(|c| !c.finished())
             || self.study.as_ref().is_some_and(|s| !s.finished())
             || self
                 .field_key()
-                .is_some_and(|k| !self.runner.field.is_current(&k));
+                .is_some_and(|k| !self.runner.field().is_current(&k));
         if busy || !self.commands.is_empty() {
             ctx.request_repaint();
         }
+    }
+
+    /// The frame's tasks within [`FRAME_BUDGET`], in order: the field the
+    /// canvas shows (the other tasks wait until it is complete, so what is
+    /// shown is consistent and stays shown while they run), then the task
+    /// in progress: the solver race, a study or the runner's run (at most
+    /// one runs: starting the race or a study pauses the runner); after
+    /// that, a growth step's field at λ_cr at once, before its tips move on.
+    fn run_tasks(&mut self) {
+        let start = Instant::now();
+        let deadline = start + FRAME_BUDGET;
+        let key = self.field_key();
+        if self.runner.sample_field(key, deadline) == Progress::Finished {
+            let task: Option<&mut dyn Task> =
+                if let Some(race) = self.race.as_mut().filter(|r| !r.finished()) {
+                    Some(race)
+                } else if let Some(study) = self.study.as_mut().filter(|s| !s.finished()) {
+                    Some(study)
+                } else if self.runner.is_running() {
+                    Some(&mut self.runner)
+                } else {
+                    None
+                };
+            if let Some(Err(e)) = task.map(|t| t.advance(deadline)) {
+                self.message = Some(Message::Error(e));
+            }
+            if self.runner.field_due_now() {
+                let key = self.field_key();
+                self.runner.sample_field(key, deadline);
+            }
+        }
+        self.frame_solver_seconds = start.elapsed().as_secs_f64();
     }
 
     /// The field the canvas wants, if any: the current solution or
@@ -338,7 +367,7 @@ impl WorkbenchApp {
     /// the chosen resolution when it stops.
     fn field_key(&mut self) -> Option<FieldKey> {
         let version = self.runner.field_version();
-        let running = self.runner.mode != RunMode::Paused;
+        let running = self.runner.is_running();
         let s = &self.settings;
         let wanted = s.field != FieldKind::None || s.deformed;
         let sim = self.runner.simulation()?;
@@ -348,7 +377,7 @@ impl WorkbenchApp {
         } else {
             s.samples_per_cell.clamp(1, 4)
         };
-        (wanted && self.runner.view.has_field()).then(|| FieldKey {
+        (wanted && self.runner.view().has_field()).then(|| FieldKey {
             version,
             cols: scene.mesh.nx * k,
             rows: scene.mesh.ny * k,
@@ -359,7 +388,7 @@ impl WorkbenchApp {
     }
 
     fn refresh_tip_curve(&mut self) {
-        let version = self.runner.view.version;
+        let version = self.runner.view().version;
         match self.selected_tip {
             None => self.tip_curve = None,
             Some(tip) => {
@@ -399,13 +428,13 @@ impl WorkbenchApp {
     /// What the panels read, and the view settings they may edit.
     fn view_parts(&mut self) -> (AppView<'_>, ViewState<'_>) {
         let run = RunStatus {
-            mode: self.runner.mode,
-            stale: self.runner.stale,
-            field_progress: self.runner.field.progress(),
-            last_solve_seconds: self.runner.last_solve_seconds,
-            last_build_seconds: self.runner.last_build_seconds,
-            pace: self.runner.pace,
-            accelerate_growth: self.runner.accelerate_growth,
+            mode: self.runner.mode(),
+            stale: self.runner.is_stale(),
+            field_progress: self.runner.field().progress(),
+            last_solve_seconds: self.runner.last_solve_seconds(),
+            last_build_seconds: self.runner.last_build_seconds(),
+            pace: self.runner.pace(),
+            accelerate_growth: self.runner.accelerate_growth(),
             growth_solver: self.runner.growth_solver_kind(&self.scene),
         };
         let tip_curve = self
@@ -416,7 +445,7 @@ impl WorkbenchApp {
         let view = AppView {
             scene: &self.scene,
             scene_source: &self.scene_source,
-            solution: &self.runner.view,
+            solution: self.runner.view(),
             run,
             can_undo: self.undo.can_undo(),
             can_redo: self.undo.can_redo(),
@@ -459,7 +488,7 @@ impl WorkbenchApp {
                     panels::scene::scene_ui(
                         ui,
                         &self.scene,
-                        &self.runner.view,
+                        self.runner.view(),
                         &mut self.editor,
                         &mut cmds,
                     );
@@ -490,8 +519,8 @@ impl WorkbenchApp {
             panels::menu::message_ui(ui, self.message.as_ref(), &mut cmds);
             let input = CanvasInput {
                 scene: &self.scene,
-                solution: &self.runner.view,
-                field: self.runner.field.current(),
+                solution: self.runner.view(),
+                field: self.runner.field().current(),
                 settings: &self.settings,
                 selected_tip: self.selected_tip,
             };
@@ -509,7 +538,7 @@ impl WorkbenchApp {
             let dt = ui.input(|i| i.unstable_dt);
             self.frame_stats.record(
                 start.elapsed().as_secs_f64(),
-                self.runner.frame_solver_seconds,
+                self.frame_solver_seconds,
                 f64::from(dt),
             );
         }

@@ -6,7 +6,6 @@ use cdca::scene::SceneFile;
 use crate::app::WorkbenchApp;
 use crate::command::{Command, Export};
 use crate::compare::Race;
-use crate::runner::RunMode;
 use crate::study::Study;
 use crate::view::Message;
 use crate::view::PlotTab;
@@ -69,7 +68,7 @@ impl WorkbenchApp {
             }
             Command::Relax => {
                 if self.ensure_simulation() {
-                    self.runner.mode = RunMode::Relaxing;
+                    self.runner.relax();
                 }
             }
             Command::GrowOne | Command::RunGrowth => {
@@ -79,17 +78,17 @@ impl WorkbenchApp {
                     self.show_error(r);
                 }
             }
-            Command::SetPace(pace) => self.runner.pace = pace,
-            Command::SetAccelerateGrowth(on) => self.runner.accelerate_growth = on,
+            Command::SetPace(pace) => self.runner.set_pace(pace),
+            Command::SetAccelerateGrowth(on) => self.runner.set_accelerate_growth(on),
             Command::RunStudy(setup) => {
-                self.runner.mode = RunMode::Paused;
+                self.runner.pause();
                 let base = cdca::Scene::try_from(self.scene.clone()).map_err(|e| e.to_string());
                 match base.and_then(|base| {
                     Study::new(
                         &base,
                         &setup.path,
                         setup.values(),
-                        self.runner.accelerate_growth,
+                        self.runner.accelerate_growth(),
                     )
                 }) {
                     Ok(study) => self.study = Some(study),
@@ -103,14 +102,14 @@ impl WorkbenchApp {
                     s.cancel();
                 }
             }
-            Command::Pause => self.runner.mode = RunMode::Paused,
+            Command::Pause => self.runner.pause(),
             Command::Reset => {
                 let valid = self.runner.invalidate(&self.scene);
                 self.show_validity(valid);
                 self.auto_solve();
             }
             Command::CompareSolvers { time_cap } => {
-                self.runner.mode = RunMode::Paused;
+                self.runner.pause();
                 match cdca::Scene::try_from(self.scene.clone()) {
                     Ok(scene) => self.race = Some(Race::new(&scene, time_cap)),
                     Err(e) => {
@@ -149,7 +148,7 @@ impl WorkbenchApp {
 
     /// A simulation of the current scene exists (rebuilt if the scene changed).
     fn ensure_simulation(&mut self) -> bool {
-        if self.runner.stale || self.runner.simulation().is_none() {
+        if self.runner.is_stale() || self.runner.simulation().is_none() {
             self.rebuild();
         }
         self.runner.simulation().is_some()
@@ -180,7 +179,7 @@ impl WorkbenchApp {
 
     fn auto_solve(&mut self) {
         if self.options.auto_solve && self.runner.solve_is_quick(&self.scene) {
-            if self.runner.stale || self.runner.simulation().is_none() {
+            if self.runner.is_stale() || self.runner.simulation().is_none() {
                 self.rebuild();
             }
             if self.runner.simulation().is_some() {
@@ -246,11 +245,11 @@ impl WorkbenchApp {
                 Err(e) => Err(e.to_string()),
             },
             Export::CrackPaths => {
-                let cracks = if self.runner.view.cracks.is_empty() {
+                let cracks = if self.runner.view().cracks.is_empty() {
                     let h = self.scene.element_size();
                     self.scene.cracks.iter().map(|c| c.polyline(h)).collect()
                 } else {
-                    self.runner.view.cracks.clone()
+                    self.runner.view().cracks.clone()
                 };
                 io::save_dialog(
                     &format!("{stem}_cracks.csv"),
@@ -261,9 +260,13 @@ impl WorkbenchApp {
             Export::History => io::save_dialog(
                 &format!("{stem}_history.csv"),
                 ("CSV", "csv"),
-                export::history_csv(&self.runner.view.history).as_bytes(),
+                export::history_csv(&self.runner.view().history).as_bytes(),
             ),
-            Export::Fields => match self.runner.simulation().filter(|_| self.runner.view.solved) {
+            Export::Fields => match self
+                .runner
+                .simulation()
+                .filter(|_| self.runner.view().solved)
+            {
                 None => Err("solve the scene before exporting its fields".to_owned()),
                 Some(sim) => {
                     let vtu = export::fields_vtu(

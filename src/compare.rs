@@ -22,7 +22,10 @@ use cdca::race::{RaceSystem, Reference};
 use cdca::scene::{Ordering, SolverKind, SolverSpec};
 use cdca::solvers::Relaxation;
 use egui_plot::PlotPoint;
-use web_time::{Duration, Instant};
+use web_time::Instant;
+
+use crate::pacer::Pacer;
+use crate::task::{Progress, Task};
 
 /// Energy error at which a run is complete (as in `cdca bench`).
 pub const ENERGY_FLOOR: f64 = 1e-11;
@@ -146,6 +149,8 @@ pub struct Race {
     phase: Phase,
     system: Option<RaceSystem>,
     reference: Option<Reference>,
+    /// Iterations per call of a run.
+    pacer: Pacer,
 }
 
 impl Race {
@@ -168,6 +173,7 @@ impl Race {
             phase: Phase::Settle,
             system: None,
             reference: None,
+            pacer: Pacer::default(),
         }
     }
 
@@ -195,31 +201,6 @@ impl Race {
         Some((&self.runs[i], total as f32))
     }
 
-    /// Works on the race until `deadline`; each phase is one resumable
-    /// piece (the setup of a solver is one piece, however long).
-    pub fn tick(&mut self, deadline: Instant) {
-        while !self.finished() && Instant::now() < deadline {
-            let phase = std::mem::replace(&mut self.phase, Phase::Finished);
-            self.phase = match self.advance(phase, deadline) {
-                Ok(next) => next,
-                Err((i, e)) => {
-                    let run = &mut self.runs[i];
-                    run.error = Some(e);
-                    run.done = true;
-                    if i == 0 {
-                        // no reference: nothing to race against
-                        for r in &mut self.runs {
-                            r.done = true;
-                        }
-                        Phase::Finished
-                    } else {
-                        self.after(i)
-                    }
-                }
-            };
-        }
-    }
-
     /// The phase after run `i`.
     fn after(&self, i: usize) -> Phase {
         if i + 1 < self.runs.len() {
@@ -229,7 +210,8 @@ impl Race {
         }
     }
 
-    fn advance(&mut self, phase: Phase, deadline: Instant) -> Result<Phase, (usize, String)> {
+    /// One piece of `phase`, and the iterations it ran.
+    fn work_on(&mut self, phase: Phase) -> Result<(Phase, usize), (usize, String)> {
         match phase {
             Phase::Settle => {
                 let params = ContactParams {
@@ -240,11 +222,11 @@ impl Race {
                 let system =
                     RaceSystem::settle(&self.scene, params).map_err(|e| (0, e.to_string()))?;
                 self.system = Some(system);
-                Ok(Phase::Reference)
+                Ok((Phase::Reference, 0))
             }
             Phase::Reference => {
                 let Some(sys) = &self.system else {
-                    return Ok(Phase::Settle);
+                    return Ok((Phase::Settle, 0));
                 };
                 let spec = self.spec(&self.runs[0].racer);
                 let zero = vec![0.0; sys.x.n_free()];
@@ -261,11 +243,11 @@ impl Race {
                 let run = &mut self.runs[0];
                 run.push(sample);
                 run.done = true;
-                Ok(self.after(0))
+                Ok((self.after(0), 0))
             }
             Phase::Setup(i) => {
                 let (Some(sys), Some(reference)) = (&self.system, &self.reference) else {
-                    return Ok(Phase::Settle);
+                    return Ok((Phase::Settle, 0));
                 };
                 let spec = self.spec(&self.runs[i].racer);
                 let zero = vec![0.0; sys.x.n_free()];
@@ -273,38 +255,31 @@ impl Race {
                     .map_err(|e| (i, e.to_string()))?;
                 let s = reference.sample(&sys.x, r.operator(), r.u(), 0, r.seconds());
                 self.runs[i].push(s);
-                Ok(Phase::Running(i, Box::new(r), 1))
+                Ok((Phase::Running(i, Box::new(r), 1), 0))
             }
             Phase::Running(i, mut r, next) => {
                 let (Some(sys), Some(reference)) = (&self.system, &self.reference) else {
-                    return Ok(Phase::Settle);
+                    return Ok((Phase::Settle, 0));
                 };
                 let run = &mut self.runs[i];
-                let status = r.status();
-                // sweeps per call: about a third of what is left of the frame
-                let per_iteration = r.seconds() / status.iterations.max(1) as f64;
-                let left = deadline.saturating_duration_since(Instant::now());
-                let fit = (left.max(Duration::from_micros(100)).as_secs_f64()
-                    / 3.0
-                    / per_iteration.max(1e-7)) as usize;
-                let n = (next - status.iterations).min(fit.max(1));
+                let n = (next - r.status().iterations).min(self.pacer.sweeps());
                 let status = r
                     .run(&sys.x, &sys.blocks, n, &mut |_| {})
                     .map_err(|e| (i, e.to_string()))?;
                 if status.iterations < next && !status.converged {
-                    return Ok(Phase::Running(i, r, next));
+                    return Ok((Phase::Running(i, r, next), n));
                 }
                 let s =
                     reference.sample(&sys.x, r.operator(), r.u(), status.iterations, r.seconds());
                 run.push(s);
                 if status.converged || s.energy <= ENERGY_FLOOR || s.seconds > self.time_cap {
                     run.done = true;
-                    return Ok(self.after(i));
+                    return Ok((self.after(i), n));
                 }
                 let next = (next + 1).max((next as f64 * 1.25) as usize);
-                Ok(Phase::Running(i, r, next))
+                Ok((Phase::Running(i, r, next), n))
             }
-            Phase::Finished => Ok(Phase::Finished),
+            Phase::Finished => Ok((Phase::Finished, 0)),
         }
     }
 
@@ -361,8 +336,51 @@ impl Race {
     }
 }
 
+impl Task for Race {
+    /// Works on the race until about `deadline`; each phase is one
+    /// resumable piece (the setup of a solver is one piece, however long),
+    /// a run's iterations go in calls sized by the pacer.
+    fn advance(&mut self, deadline: Instant) -> Result<Progress, String> {
+        while !self.finished() {
+            let start = Instant::now();
+            let phase = std::mem::replace(&mut self.phase, Phase::Finished);
+            let iterations = match self.work_on(phase) {
+                Ok((next, iterations)) => {
+                    self.phase = next;
+                    iterations
+                }
+                Err((i, e)) => {
+                    let run = &mut self.runs[i];
+                    run.error = Some(e);
+                    run.done = true;
+                    self.phase = if i == 0 {
+                        // no reference: nothing to race against
+                        for r in &mut self.runs {
+                            r.done = true;
+                        }
+                        Phase::Finished
+                    } else {
+                        self.after(i)
+                    };
+                    0
+                }
+            };
+            if !self.pacer.another_fits(start, iterations, deadline) {
+                break;
+            }
+        }
+        Ok(if self.finished() {
+            Progress::Finished
+        } else {
+            Progress::Working
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    use web_time::Duration;
+
     use super::*;
     use crate::scenes::default_scene;
 
@@ -384,7 +402,7 @@ mod tests {
             if race.finished() {
                 break;
             }
-            race.tick(Instant::now() + Duration::from_millis(10));
+            let _ = race.advance(Instant::now() + Duration::from_millis(10));
         }
         assert!(race.finished());
         assert!(race.runs[0].samples[0].energy < 1e-12);

@@ -1,11 +1,13 @@
 //! The stress and displacement fields as the canvas shows them: sampled from
 //! the solver at sub-cell points, cached, and refreshed a few rows per frame
-//! so that sampling never blows the frame budget.
+//! (the field task) so that sampling never blows the frame budget.
 
 use cdca::Simulation;
 use cdca::scene::Plane;
 use serde::{Deserialize, Serialize};
 use web_time::Instant;
+
+use crate::task::Progress;
 
 /// Which scalar the colour map shows.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -163,11 +165,12 @@ impl FieldSampler {
     }
 
     /// Samples rows of the field `key` from `sim`'s current iterate (the
-    /// solution, or the displacement of a solve under way) until `deadline`; returns
-    /// true once the field is complete and current.
-    pub fn work(&mut self, sim: &Simulation, key: FieldKey, deadline: Instant) -> bool {
+    /// solution, or the displacement of a solve under way) until
+    /// `deadline` (at least one row); finished once the field is complete
+    /// and current.
+    pub fn advance(&mut self, sim: &Simulation, key: FieldKey, deadline: Instant) -> Progress {
         if self.is_current(&key) {
-            return true;
+            return Progress::Finished;
         }
         if self.building.as_ref().is_none_or(|b| b.key != key) {
             self.building = Some(FieldSamples {
@@ -176,7 +179,7 @@ impl FieldSampler {
             });
         }
         let Some(b) = self.building.as_mut() else {
-            return false;
+            return Progress::Working;
         };
         let [dx, dy] = b.cell();
         while b.samples.len() < key.cols * key.rows {
@@ -193,9 +196,9 @@ impl FieldSampler {
         }
         if b.samples.len() == key.cols * key.rows {
             self.current = self.building.take();
-            return true;
+            return Progress::Finished;
         }
-        false
+        Progress::Working
     }
 }
 

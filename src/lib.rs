@@ -12,12 +12,15 @@ mod export;
 mod field;
 mod frame_stats;
 mod io;
+mod pacer;
 mod panels;
 mod persist;
+mod run;
 mod runner;
 pub mod scenes;
 mod solution;
 pub mod study;
+mod task;
 mod units;
 mod view;
 #[cfg(target_arch = "wasm32")]
@@ -25,5 +28,5 @@ pub mod web;
 
 pub use app::{Options, StartRun, WorkbenchApp};
 pub use command::Command;
-pub use runner::RunMode;
+pub use run::RunMode;
 pub use view::PlotTab;

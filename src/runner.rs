@@ -1,25 +1,17 @@
-//! Drives the solver inside the frame budget: the run mode, the
-//! simulation, and the copies of its state that the UI shows.
+//! The simulation, the run in progress on it (a [`Task`]), and the copies
+//! of its state that the UI shows: the solution view and the sampled
+//! field. Its state changes only through the methods the app's commands
+//! call, and through its run advancing.
 
 use cdca::scene::{SceneFile, SolverKind};
 use cdca::{Scene, Simulation};
-use web_time::{Duration, Instant};
+use web_time::Instant;
 
 use crate::field::{FieldKey, FieldSampler};
+use crate::pacer::Pacer;
+use crate::run::{Run, RunMode};
 use crate::solution::SolutionView;
-
-/// What the solver does in the coming frames.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum RunMode {
-    #[default]
-    Paused,
-    /// Relaxation sweeps each frame until converged.
-    Relaxing,
-    /// Growth steps each frame until the run ends.
-    Growing,
-    /// One growth step, then the solve of the grown cracks, then pause.
-    GrowingOne,
-}
+use crate::task::{Progress, Task};
 
 /// Relative residual to which iterative solvers solve in growth: the
 /// criterion needs the SIFs and the kink angle, and on the default scene
@@ -55,33 +47,24 @@ pub struct Runner {
     /// The edited scene, checked (None while it is invalid).
     checked: Option<Scene>,
     sim: Option<Simulation>,
-    pub mode: RunMode,
+    /// The run in progress (None: paused).
+    run: Option<Run>,
     /// `start_relaxation` was called on the current simulation.
     relaxation_started: bool,
-    /// Sweeps per `relax` call, adapted to fill the budget.
-    sweeps_per_call: usize,
-    pub view: SolutionView,
-    pub field: FieldSampler,
+    /// Sweeps per call of relaxation and growth.
+    pacer: Pacer,
+    view: SolutionView,
+    field: FieldSampler,
     /// The edited scene differs from the simulated one.
-    pub stale: bool,
+    stale: bool,
     /// Wall time of the last full solve, s.
-    pub last_solve_seconds: Option<f64>,
+    last_solve_seconds: Option<f64>,
     /// Wall time of the last `Simulation::new`, s.
-    pub last_build_seconds: f64,
-    /// Solver time spent in the last frame, s.
-    pub frame_solver_seconds: f64,
-    /// Sweeps per frame while relaxing or growing (None: as many as the
-    /// frame budget allows).
-    pub pace: Option<usize>,
+    last_build_seconds: f64,
     /// Growth with the automaton runs the multigrid-accelerated automaton.
-    pub accelerate_growth: bool,
+    accelerate_growth: bool,
     /// The growth solver settings were applied to the current simulation.
     growth_ready: bool,
-    /// Growth steps recorded when Grow one step was pressed: that run ends
-    /// once one more is recorded (counted from the click, not per frame: a
-    /// step completing at a frame's end used to let the run go on to the
-    /// end of growth).
-    one_step_from: usize,
     /// The solution version the canvas's field shows (or is sampling).
     field_version: u64,
     /// When the field last moved to a newer version.
@@ -97,19 +80,16 @@ impl Default for Runner {
         Self {
             checked: None,
             sim: None,
-            mode: RunMode::Paused,
+            run: None,
             relaxation_started: false,
-            sweeps_per_call: 1,
+            pacer: Pacer::default(),
             view: SolutionView::default(),
             field: FieldSampler::default(),
             stale: false,
             last_solve_seconds: None,
             last_build_seconds: 0.0,
-            frame_solver_seconds: 0.0,
-            pace: None,
             accelerate_growth: true,
             growth_ready: false,
-            one_step_from: 0,
             field_version: 0,
             field_moved_at: None,
             show_now: false,
@@ -121,39 +101,55 @@ impl Default for Runner {
 pub const QUICK_SOLVE_SECONDS: f64 = 0.25;
 
 impl Runner {
-    /// Forgets the simulation after an edit: `scene` is only checked
-    /// (cheap; `Scene::try_from`); the discretisation is built when solver
-    /// work is asked for.
-    pub fn invalidate(&mut self, scene: &SceneFile) -> Result<(), String> {
-        self.checked = None;
-        self.sim = None;
-        self.mode = RunMode::Paused;
-        self.relaxation_started = false;
-        self.growth_ready = false;
-        self.view.clear();
-        self.field.clear();
-        self.stale = true;
-        self.checked = Some(Scene::try_from(scene.clone()).map_err(|e| e.to_string())?);
-        Ok(())
-    }
-
-    /// Builds a simulation of `scene` (checked; nothing solved yet).
-    pub fn rebuild(&mut self, scene: &SceneFile) -> Result<(), String> {
-        self.invalidate(scene)?;
-        let Some(valid) = self.checked.clone() else {
-            unreachable!("invalidate keeps the checked scene or fails")
-        };
-        let start = Instant::now();
-        let sim = Simulation::new(valid).map_err(|e| e.to_string())?;
-        self.last_build_seconds = start.elapsed().as_secs_f64();
-        self.sim = Some(sim);
-        self.sweeps_per_call = 1;
-        self.stale = false;
-        Ok(())
-    }
+    // --- what the UI reads ----------------------------------------------
 
     pub fn simulation(&self) -> Option<&Simulation> {
         self.sim.as_ref()
+    }
+
+    /// What the UI shows of the simulation.
+    pub fn view(&self) -> &SolutionView {
+        &self.view
+    }
+
+    /// The sampled field of the canvas.
+    pub fn field(&self) -> &FieldSampler {
+        &self.field
+    }
+
+    pub fn mode(&self) -> RunMode {
+        self.run.as_ref().map_or(RunMode::Paused, Run::mode)
+    }
+
+    /// A run is in progress.
+    pub fn is_running(&self) -> bool {
+        self.run.is_some()
+    }
+
+    /// The edited scene differs from the simulated one.
+    pub fn is_stale(&self) -> bool {
+        self.stale
+    }
+
+    /// Wall time of the last full solve, s.
+    pub fn last_solve_seconds(&self) -> Option<f64> {
+        self.last_solve_seconds
+    }
+
+    /// Wall time of the last discretisation build, s.
+    pub fn last_build_seconds(&self) -> f64 {
+        self.last_build_seconds
+    }
+
+    /// Sweeps per frame while relaxing or growing (None: as many as the
+    /// frame budget allows).
+    pub fn pace(&self) -> Option<usize> {
+        self.pacer.fixed()
+    }
+
+    /// Growth with the automaton runs the multigrid-accelerated automaton.
+    pub fn accelerate_growth(&self) -> bool {
+        self.accelerate_growth
     }
 
     fn solver_kind(&self) -> SolverKind {
@@ -174,17 +170,60 @@ impl Runner {
                 })
     }
 
+    /// The solver growth uses (or will use) on this simulation, or on a
+    /// simulation of `scene` when none is built yet.
+    pub fn growth_solver_kind(&self, scene: &SceneFile) -> SolverKind {
+        match &self.sim {
+            Some(sim) if self.growth_ready || !sim.history().is_empty() => sim.scene().solver.kind,
+            Some(sim) => growth_solver(&sim.scene().solver, self.accelerate_growth).kind,
+            None => growth_solver(&scene.solver, self.accelerate_growth).kind,
+        }
+    }
+
+    // --- what the commands change ---------------------------------------
+
+    /// Forgets the simulation after an edit: `scene` is only checked
+    /// (cheap; `Scene::try_from`); the discretisation is built when solver
+    /// work is asked for.
+    pub fn invalidate(&mut self, scene: &SceneFile) -> Result<(), String> {
+        self.checked = None;
+        self.sim = None;
+        self.run = None;
+        self.relaxation_started = false;
+        self.growth_ready = false;
+        self.view.clear();
+        self.field.clear();
+        self.stale = true;
+        self.checked = Some(Scene::try_from(scene.clone()).map_err(|e| e.to_string())?);
+        Ok(())
+    }
+
+    /// Builds a simulation of `scene` (checked; nothing solved yet).
+    pub fn rebuild(&mut self, scene: &SceneFile) -> Result<(), String> {
+        self.invalidate(scene)?;
+        let Some(valid) = self.checked.clone() else {
+            unreachable!("invalidate keeps the checked scene or fails")
+        };
+        let start = Instant::now();
+        let sim = Simulation::new(valid).map_err(|e| e.to_string())?;
+        self.last_build_seconds = start.elapsed().as_secs_f64();
+        self.sim = Some(sim);
+        self.pacer.restart();
+        self.stale = false;
+        Ok(())
+    }
+
     /// Solves now: the direct solver in one call, iterative ones animated.
     pub fn solve(&mut self) -> Result<(), String> {
         if self.solver_kind() != SolverKind::Direct {
             self.relaxation_started = false;
-            self.mode = RunMode::Relaxing;
+            self.relax();
             return Ok(());
         }
         let Some(sim) = self.sim.as_mut() else {
             return Ok(());
         };
-        self.mode = RunMode::Paused;
+        self.run = None;
         let start = Instant::now();
         let result = sim.solve();
         self.last_solve_seconds = Some(start.elapsed().as_secs_f64());
@@ -194,8 +233,33 @@ impl Runner {
 
     /// One sweep of the current relaxation (starting one if needed).
     pub fn step(&mut self) -> Result<(), String> {
-        self.mode = RunMode::Paused;
-        self.relax_chunk(1).map(|_| ())
+        self.run = None;
+        self.start_relaxation();
+        let Some(sim) = self.sim.as_mut() else {
+            return Ok(());
+        };
+        let result = sim.relax(1);
+        let solved = sim.is_solved();
+        self.refresh(solved, result.as_ref().ok().copied());
+        result.map(|_| ()).map_err(|e| e.to_string())
+    }
+
+    /// Relaxes until converged, animated: the current relaxation goes on
+    /// (one is started if none was).
+    pub fn relax(&mut self) {
+        self.start_relaxation();
+        if self.sim.is_some() {
+            self.run = Some(Run::Relax);
+        }
+    }
+
+    fn start_relaxation(&mut self) {
+        if let Some(sim) = self.sim.as_mut()
+            && !self.relaxation_started
+        {
+            sim.start_relaxation();
+            self.relaxation_started = true;
+        }
     }
 
     /// Starts growth (`one`: a single step, then the solve of the grown
@@ -224,97 +288,29 @@ impl Runner {
             }
         }
         self.growth_ready = true;
-        self.one_step_from = self.sim.as_ref().map_or(0, |s| s.history().len());
-        self.mode = if one {
-            RunMode::GrowingOne
-        } else {
-            RunMode::Growing
-        };
+        let steps = self.sim.as_ref().map_or(0, |s| s.history().len());
+        self.run = Some(Run::grow(one.then_some(steps)));
         Ok(())
     }
 
-    /// The solver growth uses (or will use) on this simulation, or on a
-    /// simulation of `scene` when none is built yet.
-    pub fn growth_solver_kind(&self, scene: &SceneFile) -> SolverKind {
-        match &self.sim {
-            Some(sim) if self.growth_ready || !sim.history().is_empty() => sim.scene().solver.kind,
-            Some(sim) => growth_solver(&sim.scene().solver, self.accelerate_growth).kind,
-            None => growth_solver(&scene.solver, self.accelerate_growth).kind,
-        }
+    /// Stops the run in progress where it is (it can go on later).
+    pub fn pause(&mut self) {
+        self.run = None;
     }
 
-    /// Runs `n` sweeps; returns whether the relaxation has finished (converged or capped).
-    fn relax_chunk(&mut self, n: usize) -> Result<bool, String> {
-        let Some(sim) = self.sim.as_mut() else {
-            return Ok(true);
-        };
-        if !self.relaxation_started {
-            sim.start_relaxation();
-            self.relaxation_started = true;
-        }
-        let result = sim.relax(n);
-        let status = result.as_ref().ok().copied();
-        let solved = sim.is_solved();
-        self.refresh(solved, status);
-        let status = result.map_err(|e| e.to_string())?;
-        Ok(status.finished)
+    /// Sweeps per frame while relaxing or growing (None: as many as the
+    /// frame budget allows).
+    pub fn set_pace(&mut self, pace: Option<usize>) {
+        self.pacer.set_fixed(pace);
     }
 
-    /// Growth until `deadline`, in resumable chunks (a few solver sweeps or
-    /// one contact iteration each; the chunk that completes a step also
-    /// extends the tips and rebuilds the discretisation); with a pace, one
-    /// chunk of that many sweeps. `one`: stop after one step, once the
-    /// grown cracks are solved. Returns whether the run ended.
-    fn grow_chunk(&mut self, deadline: Instant, one: bool) -> Result<bool, String> {
-        let Some(sim) = self.sim.as_mut() else {
-            return Ok(true);
-        };
-        let steps = self.one_step_from;
-        let n = self.pace.unwrap_or(self.sweeps_per_call).max(1);
-        let mut result = Ok(false);
-        loop {
-            if sim.growth_finished().is_some() {
-                result = Ok(true);
-                break;
-            }
-            let t0 = Instant::now();
-            match sim.advance_growth(n) {
-                Err(e) => {
-                    result = Err(e.to_string());
-                    break;
-                }
-                Ok(report) => {
-                    if one && report.is_none() && sim.history().len() > steps && sim.is_solved() {
-                        result = Ok(true);
-                        break;
-                    }
-                }
-            }
-            if sim.at_critical_load() {
-                // the field of λ_cr is sampled before the tips move on
-                self.show_now = true;
-                break;
-            }
-            if self.pace.is_some() {
-                break;
-            }
-            // no call that would overrun the frame if it took as long as
-            // the last one (setup calls, e.g. a factorisation, come in
-            // runs); sweeps: a call of about a quarter of the budget left
-            let now = Instant::now();
-            if now + (now - t0) >= deadline {
-                break;
-            }
-            let per_sweep = (now - t0).as_secs_f64() / n as f64;
-            let left = (deadline - now).as_secs_f64();
-            self.sweeps_per_call = ((0.25 * left / per_sweep.max(1e-7)) as usize).clamp(1, 10_000);
-        }
-        let finished = sim.growth_finished().is_some();
-        self.relaxation_started = false;
-        let solved = sim.is_solved();
-        self.refresh(solved, None);
-        result.map(|done| done || finished)
+    /// Growth with the automaton runs its multigrid-accelerated form (from
+    /// the next growth run).
+    pub fn set_accelerate_growth(&mut self, on: bool) {
+        self.accelerate_growth = on;
     }
+
+    // --- the field ------------------------------------------------------
 
     /// The solution version the canvas's field should show: the latest
     /// when paused; while a run goes on, the latest at most every
@@ -322,7 +318,7 @@ impl Runner {
     /// so that sampling takes a small share of the frames.
     pub fn field_version(&mut self) -> u64 {
         let now = Instant::now();
-        let due = self.mode == RunMode::Paused
+        let due = self.run.is_none()
             || std::mem::take(&mut self.show_now)
             || (self.field.progress().is_none()
                 && self
@@ -335,83 +331,60 @@ impl Runner {
         self.field_version
     }
 
+    /// The field of a growth step's critical load waits to be shown (see
+    /// [`field_version`](Self::field_version)).
+    pub fn field_due_now(&self) -> bool {
+        self.show_now
+    }
+
+    /// The field task: samples the field `key` of the current state until
+    /// `deadline`. Finished when there is nothing (more) to sample; the
+    /// solver waits until then, so that what is shown is consistent.
+    pub fn sample_field(&mut self, key: Option<FieldKey>, deadline: Instant) -> Progress {
+        match (&self.sim, key) {
+            (Some(sim), Some(key)) if self.view.has_field() => {
+                self.field.advance(sim, key, deadline)
+            }
+            _ => Progress::Finished,
+        }
+    }
+
     fn refresh(&mut self, solved: bool, relax: Option<cdca::RelaxStatus>) {
         if let Some(sim) = &self.sim {
             self.view.refresh(sim, solved, relax);
         }
     }
+}
 
-    /// The frame's share of work within `budget`: first sampling the field
-    /// of the current state (the solver waits until a field is complete, so
-    /// what is shown is consistent), then solver work in the run mode with
-    /// what is left. While a run goes on the field is coarse and refreshed
-    /// at most every [`LIVE_FIELD_INTERVAL`], so the solver advances every
-    /// frame. Returns an error to show.
-    pub fn tick(&mut self, budget: Duration, field_key: Option<FieldKey>) -> Result<(), String> {
-        let start = Instant::now();
-        let deadline = start + budget;
-        self.frame_solver_seconds = 0.0;
-        if let (Some(sim), Some(key)) = (&self.sim, field_key)
-            && self.view.has_field()
-            && !self.field.is_current(&key)
-        {
-            let complete = self.field.work(sim, key, deadline);
-            if !complete || self.mode == RunMode::Paused {
-                self.frame_solver_seconds = start.elapsed().as_secs_f64();
-                return Ok(());
-            }
-        }
-        if self.mode == RunMode::Paused {
-            return Ok(());
-        }
-        let outcome = match self.mode {
-            RunMode::Paused => Ok(false),
-            RunMode::Relaxing => self.relax_for(deadline),
-            RunMode::Growing => self.grow_chunk(deadline, false),
-            RunMode::GrowingOne => self.grow_chunk(deadline, true),
+impl Task for Runner {
+    /// The run in progress until `deadline`; the view is refreshed after
+    /// the slice.
+    fn advance(&mut self, deadline: Instant) -> Result<Progress, String> {
+        let (Some(sim), Some(run)) = (self.sim.as_mut(), self.run.as_mut()) else {
+            self.run = None;
+            return Ok(Progress::Finished);
         };
-        if let Some(key) = field_key.filter(|_| self.show_now) {
-            // a growth step reached λ_cr: its field, from this frame on
-            let version = self.field_version();
-            if let Some(sim) = &self.sim {
-                self.field.work(sim, FieldKey { version, ..key }, deadline);
-            }
+        let result = run.advance(sim, &mut self.pacer, deadline);
+        if matches!(run, Run::Grow(_)) {
+            // a later Relax starts its own relaxation
+            self.relaxation_started = false;
+            // the field of λ_cr is sampled before the tips move on
+            self.show_now |= sim.at_critical_load();
         }
-        self.frame_solver_seconds = start.elapsed().as_secs_f64();
-        match outcome {
-            Ok(false) => Ok(()),
-            Ok(true) => {
-                self.mode = RunMode::Paused;
-                Ok(())
+        let solved = sim.is_solved();
+        match result {
+            Ok(slice) => {
+                self.refresh(solved, slice.status);
+                if slice.progress == Progress::Finished {
+                    self.run = None;
+                }
+                Ok(slice.progress)
             }
             Err(e) => {
-                self.mode = RunMode::Paused;
-                Err(e)
+                self.refresh(solved, None);
+                self.run = None;
+                Err(e.to_string())
             }
-        }
-    }
-
-    /// Relaxation sweeps until `deadline`, adapting the sweeps per call so
-    /// that one call takes about a quarter of the remaining budget; with a
-    /// pace, that many sweeps.
-    fn relax_for(&mut self, deadline: Instant) -> Result<bool, String> {
-        if let Some(n) = self.pace {
-            return self.relax_chunk(n.max(1));
-        }
-        loop {
-            let t0 = Instant::now();
-            let n = self.sweeps_per_call.max(1);
-            if self.relax_chunk(n)? {
-                return Ok(true);
-            }
-            let per_sweep = t0.elapsed().as_secs_f64() / n as f64;
-            let now = Instant::now();
-            if now >= deadline {
-                self.sweeps_per_call = (n / 2).max(1);
-                return Ok(false);
-            }
-            let left = (deadline - now).as_secs_f64();
-            self.sweeps_per_call = ((0.25 * left / per_sweep.max(1e-7)) as usize).clamp(1, 10_000);
         }
     }
 }

@@ -10,7 +10,9 @@ use cdca::report::{GrownTip, Mode, Outcome};
 use cdca::{Scene, Simulation};
 use web_time::Instant;
 
+use crate::pacer::Pacer;
 use crate::runner::growth_solver;
+use crate::task::{Progress, Task};
 
 /// Parameters offered in the Study tab (any numeric scene path works).
 pub const SUGGESTED_PATHS: [&str; 6] = [
@@ -99,8 +101,8 @@ pub struct Study {
     base: Scene,
     accelerate: bool,
     sim: Option<Simulation>,
-    /// Sweeps per `advance_growth` call, adapted to the budget.
-    sweeps_per_call: usize,
+    /// Sweeps per `advance_growth` call.
+    pacer: Pacer,
     pub points: Vec<StudyPoint>,
     cancelled: bool,
 }
@@ -122,7 +124,7 @@ impl Study {
             base: base.clone(),
             accelerate,
             sim: None,
-            sweeps_per_call: 1,
+            pacer: Pacer::default(),
             points: Vec::new(),
             cancelled: false,
         })
@@ -145,53 +147,6 @@ impl Study {
     /// Fraction of the values done.
     pub fn progress(&self) -> f32 {
         self.points.len() as f32 / self.values.len().max(1) as f32
-    }
-
-    /// Advances the study until `deadline`: builds the simulation of the
-    /// next value, then advances its growth in resumable chunks until a
-    /// step grows a tip or the run ends. (Building one simulation is not
-    /// split: on the default scene it is a few tens of ms.)
-    pub fn tick(&mut self, deadline: Instant) {
-        while !self.finished() && Instant::now() < deadline {
-            let value = self.values[self.points.len()];
-            if self.sim.is_none() {
-                match self.build(value) {
-                    Ok(sim) => self.sim = Some(sim),
-                    Err(e) => {
-                        self.record(value, None, Vec::new(), None, 0, Some(e));
-                        continue;
-                    }
-                }
-            }
-            let Some(sim) = self.sim.as_mut() else {
-                continue;
-            };
-            let t0 = Instant::now();
-            let n = self.sweeps_per_call.max(1);
-            match sim.advance_growth(n) {
-                Err(e) => {
-                    let steps = sim.history().len();
-                    self.record(value, None, Vec::new(), None, steps, Some(e.to_string()));
-                }
-                Ok(Some(step)) if !step.grown.is_empty() => {
-                    let steps = sim.history().len();
-                    self.record(value, Some(step.load_factor), step.grown, None, steps, None);
-                }
-                Ok(_) => {
-                    if let Some(outcome) = sim.growth_finished() {
-                        let steps = sim.history().len();
-                        self.record(value, None, Vec::new(), Some(outcome), steps, None);
-                    }
-                }
-            }
-            let now = Instant::now();
-            if now < deadline {
-                let per_sweep = (now - t0).as_secs_f64() / n as f64;
-                let left = (deadline - now).as_secs_f64();
-                self.sweeps_per_call =
-                    ((0.25 * left / per_sweep.max(1e-7)) as usize).clamp(1, 10_000);
-            }
-        }
     }
 
     fn build(&self, value: f64) -> Result<Simulation, String> {
@@ -262,6 +217,57 @@ impl Study {
             }
         }
         out
+    }
+}
+
+impl Task for Study {
+    /// Advances the study until about `deadline`: builds the simulation of
+    /// the next value, then advances its growth in resumable chunks (sized
+    /// by the pacer) until a step grows a tip or the run ends. (Building
+    /// one simulation is not split: on the default scene it is a few tens
+    /// of ms.)
+    fn advance(&mut self, deadline: Instant) -> Result<Progress, String> {
+        while !self.finished() {
+            let start = Instant::now();
+            let value = self.values[self.points.len()];
+            if self.sim.is_none() {
+                match self.build(value) {
+                    Ok(sim) => self.sim = Some(sim),
+                    Err(e) => {
+                        self.record(value, None, Vec::new(), None, 0, Some(e));
+                        continue;
+                    }
+                }
+            }
+            let Some(sim) = self.sim.as_mut() else {
+                continue;
+            };
+            let n = self.pacer.sweeps();
+            match sim.advance_growth(n) {
+                Err(e) => {
+                    let steps = sim.history().len();
+                    self.record(value, None, Vec::new(), None, steps, Some(e.to_string()));
+                }
+                Ok(Some(step)) if !step.grown.is_empty() => {
+                    let steps = sim.history().len();
+                    self.record(value, Some(step.load_factor), step.grown, None, steps, None);
+                }
+                Ok(_) => {
+                    if let Some(outcome) = sim.growth_finished() {
+                        let steps = sim.history().len();
+                        self.record(value, None, Vec::new(), Some(outcome), steps, None);
+                    }
+                }
+            }
+            if !self.pacer.another_fits(start, n, deadline) {
+                break;
+            }
+        }
+        Ok(if self.finished() {
+            Progress::Finished
+        } else {
+            Progress::Working
+        })
     }
 }
 

@@ -10,7 +10,7 @@ use cdca::scene::SolverKind;
 use crate::canvas::ViewSettings;
 use crate::compare::Race;
 use crate::edit::Editor;
-use crate::runner::RunMode;
+use crate::run::RunMode;
 use crate::solution::SolutionView;
 use crate::study::{Study, StudySetup};
 

@@ -61,7 +61,7 @@ impl WebApp {
         set("fieldShown", self.app.field_is_shown().into());
         // Sub-cells of the shown field with a finite stress (0: nothing
         // coloured, e.g. a field sampled before a solve).
-        let finite = self.app.runner.field.current().map_or(0, |f| {
+        let finite = self.app.runner.field().current().map_or(0, |f| {
             f.samples.iter().filter(|s| s.stress[0].is_finite()).count()
         });
         set("fieldFinite", (finite as f64).into());
@@ -99,12 +99,13 @@ impl WebApp {
     /// Solve, growth and frame times to the console (`log` → `console.*`).
     fn log_timings(&mut self) {
         let runner = &self.app.runner;
-        if runner.last_solve_seconds.is_some() && runner.last_solve_seconds != self.logged_solve {
-            self.logged_solve = runner.last_solve_seconds;
+        let solve = runner.last_solve_seconds();
+        if solve.is_some() && solve != self.logged_solve {
+            self.logged_solve = solve;
             log::info!(
                 "timing: build {:.1} ms, direct solve {:.1} ms",
-                runner.last_build_seconds * 1e3,
-                runner.last_solve_seconds.unwrap_or_default() * 1e3
+                runner.last_build_seconds() * 1e3,
+                solve.unwrap_or_default() * 1e3
             );
         }
         let steps = self.app.growth_steps();

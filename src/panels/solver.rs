@@ -7,7 +7,7 @@ use egui::{Grid, ProgressBar, Ui};
 use super::widgets::{EditTracker, choice, count_row, quantity_row};
 use crate::command::Command;
 use crate::compare::solver_name;
-use crate::runner::RunMode;
+use crate::run::RunMode;
 use crate::units;
 use crate::view::AppView;
 

@@ -1,0 +1,114 @@
+//! Sizes solver calls to the frame's deadline. Every long task (relaxation,
+//! growth, the solver race, a parameter study) works in calls of some
+//! number of sweeps; the pacer picks that number so that one call takes
+//! about a quarter of the budget left, and says whether another call fits.
+
+use web_time::{Duration, Instant};
+
+/// Most sweeps one call is given.
+const MAX_SWEEPS_PER_CALL: usize = 10_000;
+
+/// Share of the frame's remaining budget one call is sized to.
+const SHARE_OF_WHAT_IS_LEFT: f64 = 0.25;
+
+/// Sweeps per call: adapted to the deadline, or fixed by the user.
+#[derive(Clone, Debug)]
+pub struct Pacer {
+    per_call: usize,
+    fixed: Option<usize>,
+}
+
+impl Default for Pacer {
+    fn default() -> Self {
+        Self {
+            per_call: 1,
+            fixed: None,
+        }
+    }
+}
+
+impl Pacer {
+    /// Sweeps for the next call.
+    pub fn sweeps(&self) -> usize {
+        self.fixed.unwrap_or(self.per_call).max(1)
+    }
+
+    /// `Some(n)`: one call of `n` sweeps per frame (to watch a relaxation
+    /// slowly); `None`: as many as the frame allows.
+    pub fn set_fixed(&mut self, sweeps: Option<usize>) {
+        self.fixed = sweeps;
+    }
+
+    /// The fixed sweeps per frame, if set.
+    pub fn fixed(&self) -> Option<usize> {
+        self.fixed
+    }
+
+    /// Back to one sweep per call: the cost of a sweep on a new
+    /// simulation is unknown.
+    pub fn restart(&mut self) {
+        self.per_call = 1;
+    }
+
+    /// After a call of `sweeps` sweeps that started at `start`: whether
+    /// another call fits before `deadline`. No call is started that would
+    /// overrun the frame if it took as long as this one (setup calls, e.g.
+    /// a factorisation, come in runs); when another fits, the next is sized
+    /// to about a quarter of the budget left, and after an overrun it is
+    /// halved. A call of no sweeps (a setup, a build) changes only whether
+    /// another fits. With fixed sweeps, one call per frame.
+    pub fn another_fits(&mut self, start: Instant, sweeps: usize, deadline: Instant) -> bool {
+        if self.fixed.is_some() {
+            return false;
+        }
+        let now = Instant::now();
+        let took = now - start;
+        let fits = now + took < deadline;
+        if sweeps > 0 {
+            if now >= deadline {
+                self.per_call = (sweeps / 2).max(1);
+            } else if fits {
+                self.per_call = sized(took, sweeps, deadline - now);
+            }
+        }
+        fits
+    }
+}
+
+/// Sweeps of a call taking [`SHARE_OF_WHAT_IS_LEFT`] of `left`, when
+/// `sweeps` sweeps took `took`.
+fn sized(took: Duration, sweeps: usize, left: Duration) -> usize {
+    let per_sweep = took.as_secs_f64() / sweeps.max(1) as f64;
+    ((SHARE_OF_WHAT_IS_LEFT * left.as_secs_f64() / per_sweep.max(1e-7)) as usize)
+        .clamp(1, MAX_SWEEPS_PER_CALL)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 10 sweeps took 1 ms and 8 ms are left: a quarter of that, 2 ms, is
+    /// 20 sweeps; the count stays within [1, 10 000].
+    #[test]
+    fn a_call_is_sized_to_a_quarter_of_what_is_left() {
+        let ms = Duration::from_millis;
+        assert_eq!(sized(ms(1), 10, ms(8)), 20);
+        assert_eq!(sized(ms(100), 1, ms(1)), 1);
+        assert_eq!(sized(Duration::ZERO, 1, ms(8)), MAX_SWEEPS_PER_CALL);
+    }
+
+    #[test]
+    fn an_overrun_halves_the_call_and_a_fixed_pace_is_one_call() {
+        let mut p = Pacer::default();
+        let start = Instant::now();
+        assert!(!p.another_fits(start, 64, start));
+        assert_eq!(p.sweeps(), 32);
+        p.set_fixed(Some(7));
+        assert_eq!(p.sweeps(), 7);
+        let later = Instant::now() + Duration::from_secs(1);
+        assert!(!p.another_fits(Instant::now(), 7, later));
+        p.set_fixed(None);
+        p.restart();
+        assert_eq!(p.sweeps(), 1);
+    }
+}

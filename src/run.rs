@@ -1,0 +1,141 @@
+//! The runs of the runner's simulation, as tasks advanced within a frame
+//! deadline in calls sized by the [`Pacer`]: relaxation to convergence,
+//! and growth.
+
+use cdca::{RelaxStatus, Simulation, SolveError};
+use web_time::Instant;
+
+use crate::pacer::Pacer;
+use crate::task::Progress;
+
+/// What the solver does in the coming frames.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum RunMode {
+    #[default]
+    Paused,
+    /// Relaxation sweeps each frame until converged.
+    Relaxing,
+    /// Growth steps each frame until the run ends.
+    Growing,
+    /// One growth step, then the solve of the grown cracks, then pause.
+    GrowingOne,
+}
+
+/// A run in progress.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Run {
+    /// The relaxation started on the simulation, until it finishes.
+    Relax,
+    Grow(Growth),
+}
+
+/// A growth run: steps until growth ends (or, for Grow one step, until
+/// one more step is recorded).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Growth {
+    /// Grow one step: the number of steps recorded when it was asked for;
+    /// the run ends once one more is recorded and the grown cracks are
+    /// solved (counted from the click, not per frame: a step completing
+    /// at a frame's end used to let the run go on to the end of growth).
+    one_step_after: Option<usize>,
+}
+
+/// What a slice of a run did: where the run stands, and the status of the
+/// relaxation it advanced, if any.
+pub struct Slice {
+    pub progress: Progress,
+    pub status: Option<RelaxStatus>,
+}
+
+impl Run {
+    /// Growth until it ends; `one_step_after`: see [`Growth`].
+    pub fn grow(one_step_after: Option<usize>) -> Self {
+        Self::Grow(Growth { one_step_after })
+    }
+
+    pub fn mode(&self) -> RunMode {
+        match self {
+            Self::Relax => RunMode::Relaxing,
+            Self::Grow(g) if g.one_step_after.is_some() => RunMode::GrowingOne,
+            Self::Grow(_) => RunMode::Growing,
+        }
+    }
+
+    /// Works on `sim` until about `deadline`.
+    pub fn advance(
+        &mut self,
+        sim: &mut Simulation,
+        pacer: &mut Pacer,
+        deadline: Instant,
+    ) -> Result<Slice, SolveError> {
+        match self {
+            Self::Relax => relax(sim, pacer, deadline),
+            Self::Grow(g) => g.advance(sim, pacer, deadline),
+        }
+    }
+}
+
+/// Relaxation sweeps until the relaxation finishes (converged or capped)
+/// or the frame is used.
+fn relax(sim: &mut Simulation, pacer: &mut Pacer, deadline: Instant) -> Result<Slice, SolveError> {
+    loop {
+        let start = Instant::now();
+        let n = pacer.sweeps();
+        let status = sim.relax(n)?;
+        if status.finished {
+            return Ok(Slice {
+                progress: Progress::Finished,
+                status: Some(status),
+            });
+        }
+        if !pacer.another_fits(start, n, deadline) {
+            return Ok(Slice {
+                progress: Progress::Working,
+                status: Some(status),
+            });
+        }
+    }
+}
+
+impl Growth {
+    /// Growth in resumable chunks ([`Simulation::advance_growth`]: a few
+    /// solver sweeps, one contact iteration, a piece of a rebuild, or the
+    /// extension of the tips) until growth ends, stopping early when a step
+    /// reaches its critical load (its field is shown before the tips move
+    /// on).
+    fn advance(
+        &mut self,
+        sim: &mut Simulation,
+        pacer: &mut Pacer,
+        deadline: Instant,
+    ) -> Result<Slice, SolveError> {
+        let slice = |progress| Slice {
+            progress,
+            status: None,
+        };
+        loop {
+            if sim.growth_finished().is_some() {
+                return Ok(slice(Progress::Finished));
+            }
+            let start = Instant::now();
+            let n = pacer.sweeps();
+            let report = sim.advance_growth(n)?;
+            let one_done = self
+                .one_step_after
+                .is_some_and(|from| sim.history().len() > from);
+            if one_done && report.is_none() && sim.is_solved() {
+                return Ok(slice(Progress::Finished));
+            }
+            if sim.at_critical_load() {
+                return Ok(slice(Progress::Working));
+            }
+            if !pacer.another_fits(start, n, deadline) {
+                return Ok(slice(if sim.growth_finished().is_some() {
+                    Progress::Finished
+                } else {
+                    Progress::Working
+                }));
+            }
+        }
+    }
+}

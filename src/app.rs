@@ -241,6 +241,33 @@ impl WorkbenchApp {
             .current()
             .map(|f| (f.key.version, f.samples.len()))
     }
+    /// The load factor of the state the canvas's field was sampled from.
+    pub fn shown_field_load_factor(&self) -> Option<f64> {
+        self.runner.field().current().map(|f| f.load_factor)
+    }
+    /// The load factor λ the solver panel prints.
+    pub fn load_factor(&self) -> f64 {
+        self.runner.view().load_factor
+    }
+    /// The growth steps recorded by the current simulation.
+    pub fn growth_history(&self) -> &[cdca::report::GrowthStepReport] {
+        &self.runner.view().history
+    }
+    /// The final cracks cut the specimen through (their solve failed).
+    pub fn specimen_split(&self) -> bool {
+        self.runner.view().split
+    }
+    /// What File ▸ Save writes: the scene as simulated when a simulation
+    /// of the edited scene exists (grown cracks and `growth.resume`, so
+    /// that the file reopens and grows the identical next step), else the
+    /// edited scene.
+    pub fn scene_file(&self) -> Result<String, String> {
+        let scene = match self.runner.simulation() {
+            Some(sim) if !self.runner.is_stale() => sim.scene(),
+            _ => &self.scene,
+        };
+        scene.to_json().map_err(|e| e.to_string())
+    }
     /// The stress samples of the field the canvas shows (σ_xx, σ_yy, τ_xy).
     pub fn shown_stresses(&self) -> Vec<[f64; 3]> {
         self.runner

@@ -118,6 +118,11 @@ impl WorkbenchApp {
                     }
                 }
             }
+            Command::CancelRace => {
+                if let Some(r) = self.race.as_mut() {
+                    r.cancel();
+                }
+            }
             Command::SelectTip(tip) => self.selected_tip = tip,
             Command::DismissMessage => self.message = None,
         }
@@ -236,13 +241,13 @@ impl WorkbenchApp {
     fn export(&mut self, ctx: &egui::Context, what: Export) {
         let stem = file_stem(&self.scene);
         let result = match what {
-            Export::Scene => match self.scene.to_json() {
+            Export::Scene => match self.scene_file() {
                 Ok(json) => io::save_dialog(
                     &format!("{stem}.json"),
                     ("Scene (JSON)", "json"),
                     json.as_bytes(),
                 ),
-                Err(e) => Err(e.to_string()),
+                Err(e) => Err(e),
             },
             Export::CrackPaths => {
                 let cracks = if self.runner.view().cracks.is_empty() {

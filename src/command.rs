@@ -69,6 +69,8 @@ pub enum Command {
     CompareSolvers {
         time_cap: f64,
     },
+    /// Stop the solver race; the runs done so far stay.
+    CancelRace,
     /// Sweeps per frame while relaxing or growing (None: as many as the
     /// frame budget allows).
     SetPace(Option<usize>),

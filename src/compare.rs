@@ -151,6 +151,7 @@ pub struct Race {
     reference: Option<Reference>,
     /// Iterations per call of a run.
     pacer: Pacer,
+    cancelled: bool,
 }
 
 impl Race {
@@ -174,11 +175,34 @@ impl Race {
             system: None,
             reference: None,
             pacer: Pacer::default(),
+            cancelled: false,
         }
     }
 
     pub fn finished(&self) -> bool {
         matches!(self.phase, Phase::Finished)
+    }
+
+    /// Stops the race; the runs done so far stay.
+    pub fn cancel(&mut self) {
+        self.phase = Phase::Finished;
+        self.cancelled = true;
+    }
+
+    pub fn cancelled(&self) -> bool {
+        self.cancelled
+    }
+
+    /// The iterative solvers raced.
+    pub fn iterative_runs(&self) -> usize {
+        self.runs.len() - 1
+    }
+
+    /// How long the race takes at most, s: every iterative solver run to
+    /// its time cap (the settling and the direct reference, a fraction of
+    /// a second on the default scene, left out).
+    pub fn estimate_seconds(&self) -> f64 {
+        self.iterative_runs() as f64 * self.time_cap
     }
 
     /// The run in progress and the race's overall progress in [0, 1].

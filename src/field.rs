@@ -119,6 +119,8 @@ pub struct FieldKey {
 #[derive(Clone, Debug)]
 pub struct FieldSamples {
     pub key: FieldKey,
+    /// The load factor of the state sampled.
+    pub load_factor: f64,
     /// Row-major from the bottom-left.
     pub samples: Vec<Sample>,
 }
@@ -175,6 +177,7 @@ impl FieldSampler {
         if self.building.as_ref().is_none_or(|b| b.key != key) {
             self.building = Some(FieldSamples {
                 key,
+                load_factor: sim.load_factor(),
                 samples: Vec::with_capacity(key.cols * key.rows),
             });
         }

@@ -1,6 +1,7 @@
 //! The runs of the runner's simulation, as tasks advanced within a frame
 //! deadline in calls sized by the [`Pacer`]: relaxation to convergence,
-//! and growth.
+//! and growth, which ends with the solve of the final cracks at the last
+//! step's load factor.
 
 use cdca::{RelaxStatus, Simulation, SolveError};
 use web_time::Instant;
@@ -30,7 +31,7 @@ pub enum Run {
 }
 
 /// A growth run: steps until growth ends (or, for Grow one step, until
-/// one more step is recorded).
+/// one more step is recorded), then the final solve.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Growth {
     /// Grow one step: the number of steps recorded when it was asked for;
@@ -38,10 +39,13 @@ pub struct Growth {
     /// solved (counted from the click, not per frame: a step completing
     /// at a frame's end used to let the run go on to the end of growth).
     one_step_after: Option<usize>,
+    /// Growth has ended and the final cracks are being solved at the last
+    /// step's load factor ([`Simulation::start_final_solve`]).
+    final_solve: bool,
 }
 
 /// What a slice of a run did: where the run stands, and the status of the
-/// relaxation it advanced, if any.
+/// relaxation (or final solve) it advanced, if any.
 pub struct Slice {
     pub progress: Progress,
     pub status: Option<RelaxStatus>,
@@ -50,7 +54,10 @@ pub struct Slice {
 impl Run {
     /// Growth until it ends; `one_step_after`: see [`Growth`].
     pub fn grow(one_step_after: Option<usize>) -> Self {
-        Self::Grow(Growth { one_step_after })
+        Self::Grow(Growth {
+            one_step_after,
+            final_solve: false,
+        })
     }
 
     pub fn mode(&self) -> RunMode {
@@ -59,6 +66,12 @@ impl Run {
             Self::Grow(g) if g.one_step_after.is_some() => RunMode::GrowingOne,
             Self::Grow(_) => RunMode::Growing,
         }
+    }
+
+    /// The final solve after growth is under way: the field shown stays
+    /// the last solved one until it is solved.
+    pub fn in_final_solve(&self) -> bool {
+        matches!(self, Self::Grow(g) if g.final_solve)
     }
 
     /// Works on `sim` until about `deadline`.
@@ -100,41 +113,60 @@ fn relax(sim: &mut Simulation, pacer: &mut Pacer, deadline: Instant) -> Result<S
 impl Growth {
     /// Growth in resumable chunks ([`Simulation::advance_growth`]: a few
     /// solver sweeps, one contact iteration, a piece of a rebuild, or the
-    /// extension of the tips) until growth ends, stopping early when a step
-    /// reaches its critical load (its field is shown before the tips move
-    /// on).
+    /// extension of the tips), stopping early when a step reaches its
+    /// critical load (its field is shown before the tips move on). Once
+    /// growth has ended, the final cracks are solved at the last step's
+    /// load factor ([`Simulation::start_final_solve`]), so that the state
+    /// shown at the end is solved at the load the history prints; nothing
+    /// is left to solve when the last step grew nothing (its state is that
+    /// solve).
     fn advance(
         &mut self,
         sim: &mut Simulation,
         pacer: &mut Pacer,
         deadline: Instant,
     ) -> Result<Slice, SolveError> {
-        let slice = |progress| Slice {
-            progress,
-            status: None,
-        };
+        let mut status = None;
         loop {
-            if sim.growth_finished().is_some() {
-                return Ok(slice(Progress::Finished));
-            }
             let start = Instant::now();
             let n = pacer.sweeps();
-            let report = sim.advance_growth(n)?;
-            let one_done = self
-                .one_step_after
-                .is_some_and(|from| sim.history().len() > from);
-            if one_done && report.is_none() && sim.is_solved() {
-                return Ok(slice(Progress::Finished));
-            }
-            if sim.at_critical_load() {
-                return Ok(slice(Progress::Working));
+            if self.final_solve {
+                let s = sim.relax(n)?;
+                status = Some(s);
+                if s.finished {
+                    return Ok(Slice {
+                        progress: Progress::Finished,
+                        status,
+                    });
+                }
+            } else if sim.growth_finished().is_some() {
+                if sim.is_solved() || sim.start_final_solve().is_none() {
+                    return Ok(Slice {
+                        progress: Progress::Finished,
+                        status,
+                    });
+                }
+                self.final_solve = true;
+                continue;
+            } else {
+                let report = sim.advance_growth(n)?;
+                let one_done = self
+                    .one_step_after
+                    .is_some_and(|from| sim.history().len() > from);
+                if (one_done && report.is_none() && sim.is_solved()) || sim.at_critical_load() {
+                    let progress = if sim.at_critical_load() {
+                        Progress::Working
+                    } else {
+                        Progress::Finished
+                    };
+                    return Ok(Slice { progress, status });
+                }
             }
             if !pacer.another_fits(start, n, deadline) {
-                return Ok(slice(if sim.growth_finished().is_some() {
-                    Progress::Finished
-                } else {
-                    Progress::Working
-                }));
+                return Ok(Slice {
+                    progress: Progress::Working,
+                    status,
+                });
             }
         }
     }

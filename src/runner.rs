@@ -4,7 +4,7 @@
 //! call, and through its run advancing.
 
 use cdca::scene::{SceneFile, SolverKind};
-use cdca::{Scene, Simulation};
+use cdca::{Scene, Simulation, SolveError};
 use web_time::Instant;
 
 use crate::field::{FieldKey, FieldSampler};
@@ -315,12 +315,14 @@ impl Runner {
     /// The solution version the canvas's field should show: the latest
     /// when paused; while a run goes on, the latest at most every
     /// [`LIVE_FIELD_INTERVAL`] and only once the previous field is complete,
-    /// so that sampling takes a small share of the frames.
+    /// so that sampling takes a small share of the frames; during the
+    /// final solve after growth, the last solved one until it is solved.
     pub fn field_version(&mut self) -> u64 {
         let now = Instant::now();
         let due = self.run.is_none()
             || std::mem::take(&mut self.show_now)
             || (self.field.progress().is_none()
+                && !self.run.as_ref().is_some_and(Run::in_final_solve)
                 && self
                     .field_moved_at
                     .is_none_or(|t| (now - t).as_secs_f64() >= LIVE_FIELD_INTERVAL));
@@ -358,13 +360,16 @@ impl Runner {
 
 impl Task for Runner {
     /// The run in progress until `deadline`; the view is refreshed after
-    /// the slice.
+    /// the slice. When the solve of the final cracks finds the specimen
+    /// split (no stiffness against a piece's rigid motion), the run ends
+    /// showing the last solved state.
     fn advance(&mut self, deadline: Instant) -> Result<Progress, String> {
         let (Some(sim), Some(run)) = (self.sim.as_mut(), self.run.as_mut()) else {
             self.run = None;
             return Ok(Progress::Finished);
         };
         let result = run.advance(sim, &mut self.pacer, deadline);
+        let final_solve = run.in_final_solve();
         if matches!(run, Run::Grow(_)) {
             // a later Relax starts its own relaxation
             self.relaxation_started = false;
@@ -379,6 +384,12 @@ impl Task for Runner {
                     self.run = None;
                 }
                 Ok(slice.progress)
+            }
+            Err(SolveError::NotPositiveDefinite { .. }) if final_solve => {
+                self.refresh(false, None);
+                self.view.mark_split();
+                self.run = None;
+                Ok(Progress::Finished)
             }
             Err(e) => {
                 self.refresh(solved, None);

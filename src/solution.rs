@@ -41,6 +41,10 @@ pub struct SolutionView {
     /// Fraction of the grown tips' elements integrated, while a growth
     /// step rebuilds the discretisation.
     pub rebuild: Option<f64>,
+    /// The final cracks cut the specimen through: their solve failed (no
+    /// stiffness against a piece's rigid motion), and the field shown is
+    /// the last solved state, at the last step's load factor.
+    pub split: bool,
 }
 
 impl SolutionView {
@@ -50,6 +54,7 @@ impl SolutionView {
     pub fn refresh(&mut self, sim: &Simulation, solved: bool, relax: Option<RelaxStatus>) {
         self.version += 1;
         self.solved = solved;
+        self.split = false;
         self.live = !solved && sim.is_relaxing();
         self.relax = relax;
         self.rebuild = sim.rebuild_progress();
@@ -78,6 +83,17 @@ impl SolutionView {
         } else {
             self.contact.clear();
         }
+    }
+
+    /// The final cracks' solve found the specimen split: nothing of that
+    /// failed solve is shown (no field, contact states or tips), and the
+    /// canvas keeps the last solved field.
+    pub fn mark_split(&mut self) {
+        self.split = true;
+        self.solved = false;
+        self.live = false;
+        self.tips.clear();
+        self.contact.clear();
     }
 
     /// A displacement field can be sampled: a solution, or the iterate of

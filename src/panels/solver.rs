@@ -25,7 +25,7 @@ pub fn solver_ui(ui: &mut Ui, v: &AppView, race_time_cap: &mut f64, cmds: &mut V
     ui.separator();
     controls_ui(ui, v, race_time_cap, cmds);
     ui.separator();
-    status_ui(ui, v);
+    status_ui(ui, v, cmds);
 }
 
 fn settings_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
@@ -233,7 +233,33 @@ fn pace_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
     }
 }
 
-fn status_ui(ui: &mut Ui, v: &AppView) {
+/// The race under way: progress, how long it takes at most, and Cancel.
+fn race_progress_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
+    let Some(race) = v.race else {
+        return;
+    };
+    let Some((run, progress)) = race.status() else {
+        return;
+    };
+    ui.add(ProgressBar::new(progress).text(format!(
+        "Race: {} ({})",
+        run.racer.name,
+        units::seconds(run.seconds())
+    )));
+    ui.horizontal_wrapped(|ui| {
+        ui.label(format!(
+            "About {} in all: {} solvers × {} cap",
+            units::seconds(race.estimate_seconds()),
+            race.iterative_runs(),
+            units::seconds(race.time_cap)
+        ));
+        if ui.button("Cancel race").clicked() {
+            cmds.push(Command::CancelRace);
+        }
+    });
+}
+
+fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
     let view = &v.solution;
     if v.run.stale && !view.solved {
         ui.colored_label(ui.visuals().warn_fg_color, "Scene changed — press Solve.");
@@ -271,16 +297,23 @@ fn status_ui(ui: &mut Ui, v: &AppView) {
     if let Some(p) = v.run.field_progress {
         ui.add(ProgressBar::new(p).text("sampling the field"));
     }
-    if let Some((run, progress)) = v.race.and_then(crate::compare::Race::status) {
-        ui.add(ProgressBar::new(progress).text(format!(
-            "Race: {} ({})",
-            run.racer.name,
-            units::seconds(run.seconds())
-        )));
+    race_progress_ui(ui, v, cmds);
+    if view.split {
+        ui.colored_label(
+            ui.visuals().warn_fg_color,
+            format!(
+                "Specimen split: the final cracks cut it through, so they cannot be solved. The field shown is the last solved state, at λ = {:.3}.",
+                view.load_factor
+            ),
+        );
     }
     Grid::new("status").num_columns(2).show(ui, |ui| {
         ui.label("Solved");
-        ui.label(if view.solved { "yes" } else { "no" });
+        ui.label(match (view.solved, view.split) {
+            (true, _) => "yes",
+            (false, true) => "no (specimen split)",
+            (false, false) => "no",
+        });
         ui.end_row();
         if let Some(r) = view.relax {
             ui.label("Relaxation");

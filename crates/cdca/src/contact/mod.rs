@@ -1,11 +1,13 @@
 //! Frictional contact on closed crack faces (SPEC §5): the penalty
 //! stick/slip law with Coulomb friction and cohesion per face piece, and
 //! the contact iteration (the paper's Newton loop) around any linear
-//! solver, with a guard against stick–slip cycling and an explicit status.
+//! solver, with a guard against stick–slip cycling and an explicit status;
+//! or, with the automaton, the paper's rule: states updated in the sweep.
 //!
 //! Uses the discretisation (face points, element blocks) and the solvers'
 //! common trait.
 
+pub mod in_sweep;
 pub mod iteration;
 pub mod law;
 

@@ -11,9 +11,9 @@ mod resume;
 mod validate;
 
 pub use file::{
-    ArcSpec, Boundary, CrackSpec, CriterionKind, CriterionSpec, Fix, GrowthControl, GrowthSpec,
-    Material, MeshSpec, Ordering, Plane, PointSupport, Sampling, Scene, ShearStrength, SideBc,
-    SolverKind, SolverSpec, Specimen,
+    ArcSpec, Boundary, ContactUpdate, CrackSpec, CriterionKind, CriterionSpec, Fix, GrowthControl,
+    GrowthSpec, Material, MeshSpec, Ordering, Plane, PointSupport, Sampling, Scene, ShearStrength,
+    SideBc, SolverKind, SolverSpec, Specimen,
 };
 pub use resume::Resume;
 pub use validate::MAX_ELEMENTS;

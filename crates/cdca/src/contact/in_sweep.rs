@@ -168,11 +168,11 @@ impl InSweep {
                 seconds: self.seconds + clock.elapsed().as_secs_f64(),
                 residual,
             });
-            self.info.last.history = self.history[self.last_change..]
-                .iter()
-                .map(|h| h.residual)
-                .collect();
             if self.finished {
+                self.info.last.history = self.history[self.last_change..]
+                    .iter()
+                    .map(|h| h.residual)
+                    .collect();
                 break;
             }
         }
@@ -353,7 +353,7 @@ impl InSweep {
     /// How the iteration went so far (how it ended, once finished):
     /// `iterations` and `linear_iterations` count sweeps, `residual` is the
     /// last sweep's `‖Δu‖/‖u‖`, and `last` covers the sweeps since a state
-    /// last changed.
+    /// last changed (its `history` is filled once finished).
     pub fn info(&self) -> &ContactInfo {
         &self.info
     }

@@ -93,7 +93,8 @@ pub struct InSweep {
     states: Vec<FaceState>,
     tracker: FlipTracker,
     info: ContactInfo,
-    setup: Option<Setup>,
+    /// Boxed: the cells and operator are large, the rest is small.
+    setup: Option<Box<Setup>>,
     sweeps: usize,
     /// Relative residual after the last sweep.
     residual: f64,
@@ -153,7 +154,7 @@ impl InSweep {
             let setup = self.build(x, committed, u)?;
             let residual = relative(norm(&setup.r), norm(&setup.f));
             self.residual = residual;
-            self.setup = Some(setup);
+            self.setup = Some(Box::new(setup));
             self.history.push(ResidualSample {
                 iteration: 0,
                 seconds: clock.elapsed().as_secs_f64(),

@@ -14,39 +14,6 @@ use crate::error::SolveError;
 use crate::scene::ContactUpdate;
 use crate::solvers::relaxation::{RelaxStatus, ResidualSample};
 
-/// The solve in progress: how the contact states are updated.
-pub(super) enum Job {
-    /// After each linear solve of the scene's solver.
-    Outer(ContactSolve),
-    /// At the automaton's cell visits.
-    InSweep(InSweep),
-}
-
-impl Job {
-    /// The contact states as they are now.
-    pub(super) fn states(&self) -> &[FaceState] {
-        match self {
-            Job::Outer(j) => j.states(),
-            Job::InSweep(j) => j.states(),
-        }
-    }
-
-    /// Residual samples so far.
-    fn history(&self) -> &[ResidualSample] {
-        match self {
-            Job::Outer(j) => j.history(),
-            Job::InSweep(j) => j.history(),
-        }
-    }
-
-    fn into_result(self) -> (Vec<FaceState>, ContactInfo) {
-        match self {
-            Job::Outer(j) => j.into_result(),
-            Job::InSweep(j) => j.into_result(),
-        }
-    }
-}
-
 impl Simulation {
     /// Starts (or restarts) a resumable solve from the current displacement
     /// with the scene's solver. The contact iteration starts at the first

@@ -4,7 +4,7 @@
 
 use web_time::Instant;
 
-use super::relax::Job;
+use super::job::Job;
 use super::search::CriticalRun;
 use crate::contact::in_sweep::InSweepParams;
 use crate::contact::iteration::{ContactInfo, ContactParams};

@@ -6,10 +6,10 @@
 //! without freezing a frame. [`Simulation::solve`] runs the same slices to
 //! the end.
 
+use super::job::Job;
 use super::state::Simulation;
 use crate::contact::in_sweep::InSweep;
-use crate::contact::iteration::{ContactInfo, ContactSolve};
-use crate::contact::law::FaceState;
+use crate::contact::iteration::ContactSolve;
 use crate::error::SolveError;
 use crate::scene::ContactUpdate;
 use crate::solvers::relaxation::{RelaxStatus, ResidualSample};

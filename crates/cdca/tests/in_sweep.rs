@@ -97,6 +97,28 @@ fn plate_45_biaxial_in_sweep_matches_outer_loop() {
     agree("plate_45_biaxial_k0.2_mu0.5 (40 × 40)", &s);
 }
 
+/// Regression: over-relaxed in-sweep (ω = 1.8) on the 40 × 40 plate ran
+/// away to slip friction 1e30 times the load and reported `converged`
+/// with K ≈ 1e30, its residual being measured against `f` with those
+/// forces. Measured against the load, the status is the truth: a run that
+/// says converged has the ω = 1 answer (K_II = −4.669206e6 Pa√m at tip 0,
+/// to 1e-6), any other ends unconverged or with an error.
+#[test]
+fn over_relaxed_in_sweep_never_claims_a_runaway_state() {
+    let mut s = with(scene("plate_45_biaxial_k0.2_mu0.5"), ContactUpdate::InSweep);
+    s.mesh.nx = 40;
+    s.mesh.ny = 40;
+    s.solver.omega = 1.8;
+    s.solver.max_iterations = 6000;
+    let mut sim = Simulation::new(s).expect("valid scene");
+    if let Ok(r) = sim.solve() {
+        if r.converged() {
+            let k2 = r.tips[0].k2;
+            assert!((k2 + 4.669_206e6).abs() <= 1e-6 * 4.67e6 + 1.0, "K_II {k2}");
+        }
+    }
+}
+
 /// Runs the in-sweep solve in slices of `slice` sweeps; returns the
 /// displacement, the face states and tractions and the report.
 fn sliced(scene: &Scene, slice: usize) -> (Vec<f64>, Vec<[f64; 3]>, SolveReport) {

@@ -9,6 +9,7 @@ use crate::contact::law::{ContactState, FaceState, contact_system, gaps, update_
 use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::xfem::Xfem;
 use crate::error::SolveError;
+use crate::geometry::cracks::Crack;
 use crate::solvers::linear::{LinearInfo, LinearSolver};
 use crate::solvers::relaxation::{RelaxStatus, ResidualSample};
 
@@ -333,6 +334,20 @@ impl FlipTracker {
         }
     }
 
+    /// Whether point `i` is frozen.
+    pub fn is_frozen(&self, i: usize) -> bool {
+        self.frozen[i]
+    }
+
+    /// Counts a state change of point `i`, freezing it once it has changed
+    /// more than `max_flips` times.
+    pub fn flip(&mut self, i: usize, max_flips: u32) {
+        self.flips[i] += 1;
+        if self.flips[i] > max_flips {
+            self.frozen[i] = true;
+        }
+    }
+
     /// Number of frozen (cycling) points.
     pub fn frozen(&self) -> usize {
         self.frozen.iter().filter(|&&f| f).count()
@@ -405,31 +420,57 @@ pub fn update_states(
         let new = update_point(crack, committed[i].slip, gn, gt);
         if tracker.frozen[i] {
             states[i] = forced(states[i].state, crack, committed[i].slip, gn, gt);
-            let kept = states[i].state;
-            let breaks = match (kept, new.state) {
-                (a, b) if a == b => false,
-                (ContactState::Open, _) | (_, ContactState::Open) => {
-                    gn.abs() > FROZEN_TOLERANCE * jump_scale[fp.crack]
-                }
-                _ => {
-                    let limit = crack.friction * new.p_n.abs() + crack.cohesion;
-                    let trial = crack.kt * (gt - committed[i].slip);
-                    (trial.abs() - limit).abs() > FROZEN_TOLERANCE * limit.max(trial.abs())
-                }
-            };
+            let breaks = breaks_law(
+                states[i].state,
+                &new,
+                crack,
+                committed[i].slip,
+                gt,
+                jump_scale[fp.crack],
+            );
             update.violating += usize::from(breaks);
             continue;
         }
         if new.state != states[i].state {
             update.changed += 1;
-            tracker.flips[i] += 1;
-            if tracker.flips[i] > params.max_flips {
-                tracker.frozen[i] = true;
-            }
+            tracker.flip(i, params.max_flips);
         }
         states[i] = new;
     }
-    // slivers at tips take their neighbour's state and traction
+    update_followers(x, u, states);
+    update
+}
+
+/// Whether a frozen point whose kept state is `kept` breaks the contact
+/// law by more than [`FROZEN_TOLERANCE`], given the return mapping's state
+/// `new` at its gaps (`g_T` = `gt`, the normal gap in `new`): a normal gap
+/// beyond that fraction of `jump_scale` (its crack's largest jump) when
+/// one of the two is open, a trial tangential traction beyond that
+/// fraction of the Coulomb limit otherwise.
+pub fn breaks_law(
+    kept: ContactState,
+    new: &FaceState,
+    crack: &Crack,
+    committed_slip: f64,
+    gt: f64,
+    jump_scale: f64,
+) -> bool {
+    match (kept, new.state) {
+        (a, b) if a == b => false,
+        (ContactState::Open, _) | (_, ContactState::Open) => {
+            new.g_n.abs() > FROZEN_TOLERANCE * jump_scale
+        }
+        _ => {
+            let limit = crack.friction * new.p_n.abs() + crack.cohesion;
+            let trial = crack.kt * (gt - committed_slip);
+            (trial.abs() - limit).abs() > FROZEN_TOLERANCE * limit.max(trial.abs())
+        }
+    }
+}
+
+/// Slivers at tips take their neighbour's state and traction, with their
+/// own gaps from `u`.
+pub fn update_followers(x: &Xfem, u: &[f64], states: &mut [FaceState]) {
     for (i, fp) in x.faces.iter().enumerate() {
         if let Some(j) = fp.follows {
             let (g_n, g_t) = gaps(x, fp, u);
@@ -440,7 +481,6 @@ pub fn update_states(
             };
         }
     }
-    update
 }
 
 /// `‖a − b‖ / ‖a‖` (or `‖a − b‖` when a = 0): the contact iteration's
@@ -463,13 +503,7 @@ pub fn any_slip(states: &[FaceState]) -> bool {
 
 /// The state of a frozen point: its kind is kept, its tractions follow the
 /// gaps.
-fn forced(
-    kind: ContactState,
-    crack: &crate::geometry::cracks::Crack,
-    slip: f64,
-    gn: f64,
-    gt: f64,
-) -> FaceState {
+pub fn forced(kind: ContactState, crack: &Crack, slip: f64, gn: f64, gt: f64) -> FaceState {
     let free = update_point(crack, slip, gn, gt);
     match kind {
         ContactState::Open => FaceState {

@@ -365,6 +365,39 @@ pub struct SolverSpec {
     pub contact_tolerance: f64,
     #[serde(default = "default_max_contact_iterations")]
     pub max_contact_iterations: usize,
+    /// When the contact states are updated: `outer` (after each linear
+    /// solve, the default) or `in_sweep` (at each cell visit of the
+    /// automaton; `kind` must be `automaton`).
+    #[serde(default, skip_serializing_if = "ContactUpdate::is_outer")]
+    pub contact_update: ContactUpdate,
+}
+
+/// When the contact iteration updates the face points' states (SPEC §5).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactUpdate {
+    /// An outer fixed-point loop: solve the linear system of the current
+    /// states, then update every point by the return mapping.
+    #[default]
+    Outer,
+    /// The paper's DCA rule: the automaton updates the states and
+    /// tractions of the points a cell affects as the sweep passes the cell.
+    InSweep,
+}
+
+impl ContactUpdate {
+    /// Whether this is the default, [`ContactUpdate::Outer`].
+    pub fn is_outer(&self) -> bool {
+        *self == Self::Outer
+    }
+
+    /// Name as in the scene file.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Outer => "outer",
+            Self::InSweep => "in_sweep",
+        }
+    }
 }
 
 impl Default for SolverSpec {
@@ -377,6 +410,7 @@ impl Default for SolverSpec {
             ordering: Ordering::Lexicographic,
             contact_tolerance: default_contact_tolerance(),
             max_contact_iterations: default_max_contact_iterations(),
+            contact_update: ContactUpdate::Outer,
         }
     }
 }

@@ -8,7 +8,7 @@
 mod rigid_body;
 
 use crate::error::SceneError;
-use crate::scene::{ArcSpec, CrackSpec, Material, SceneFile, SideBc};
+use crate::scene::{ArcSpec, CrackSpec, Material, SceneFile, SideBc, SolverKind};
 
 /// Largest accepted mesh, in elements (`nx × ny`).
 pub const MAX_ELEMENTS: usize = 4_000_000;
@@ -167,7 +167,15 @@ impl SceneFile {
         at_least_one("solver.max_iterations", s.max_iterations)?;
         open_interval("solver.omega", s.omega, 0.0, 2.0)?;
         positive("solver.contact_tolerance", s.contact_tolerance)?;
-        at_least_one("solver.max_contact_iterations", s.max_contact_iterations)
+        at_least_one("solver.max_contact_iterations", s.max_contact_iterations)?;
+        // in-sweep updates are a rule of the automaton's cell visits
+        let kind = format!("{:?}", s.kind).to_lowercase();
+        ensure(
+            s.contact_update.is_outer() || s.kind == SolverKind::Automaton,
+            "solver.contact_update",
+            s.contact_update.name(),
+            format!("needs solver.kind \"automaton\" (it is \"{kind}\")"),
+        )
     }
 
     /// `p` is finite and inside the closed specimen rectangle (tolerance

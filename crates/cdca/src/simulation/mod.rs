@@ -19,6 +19,7 @@
 mod critical;
 mod grow;
 mod initiation;
+mod job;
 mod relax;
 mod search;
 mod solve;

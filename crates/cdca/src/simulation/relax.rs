@@ -1,12 +1,17 @@
 //! The solve at the current load, resumable: the contact iteration
-//! ([`ContactSolve`]) around the scene's linear solver, a slice at a time,
-//! so that the workbench can animate the automaton and the contact states
-//! settling without freezing a frame. [`Simulation::solve`] runs the same
-//! slices to the end.
+//! ([`ContactSolve`]) around the scene's linear solver, or the automaton
+//! with the contact states updated in its sweeps ([`InSweep`],
+//! `solver.contact_update: "in_sweep"`), a slice at a time, so that the
+//! workbench can animate the automaton and the contact states settling
+//! without freezing a frame. [`Simulation::solve`] runs the same slices to
+//! the end.
 
+use super::job::Job;
 use super::state::Simulation;
+use crate::contact::in_sweep::InSweep;
 use crate::contact::iteration::ContactSolve;
 use crate::error::SolveError;
+use crate::scene::ContactUpdate;
 use crate::solvers::relaxation::{RelaxStatus, ResidualSample};
 
 impl Simulation {
@@ -27,12 +32,15 @@ impl Simulation {
     /// was built with: the matrix is then new; otherwise only the
     /// right-hand side changes.
     ///
-    /// The contact states are updated when a linear solve has finished,
-    /// never inside a slice, so the answer does not depend on
-    /// `max_iterations` ([`ContactSolve`]). The solve ends (`finished`)
+    /// The contact states are updated when a linear solve has finished
+    /// ([`ContactSolve`]), or with `solver.contact_update: "in_sweep"` at
+    /// each cell visit of the automaton ([`InSweep`]; then
+    /// [`contact_points`](Self::contact_points) shows them changing
+    /// between slices), never at a slice's end, so the answer does not
+    /// depend on `max_iterations`. The solve ends (`finished`)
     /// when the contact states settle, or at a cap:
-    /// `solver.max_iterations` sweeps in one linear solve, or
-    /// `solver.max_contact_iterations` contact iterations. `converged` is
+    /// `solver.max_iterations` sweeps in one linear solve (in all, in
+    /// sweep), or `solver.max_contact_iterations` contact iterations. `converged` is
     /// true only when it ended with every test passed; a capped solve ends
     /// with `converged: false`, its state is shown but growth does not go on
     /// from it. The tips are evaluated either way.
@@ -48,20 +56,31 @@ impl Simulation {
                 .collect();
             let initial = self.initial_contact_states();
             let params = self.contact_params();
-            self.scratch.job = Some(ContactSolve::new(load, initial, params));
+            self.scratch.job = Some(match self.model.scene.solver.contact_update {
+                ContactUpdate::Outer => Job::Outer(ContactSolve::new(load, initial, params)),
+                ContactUpdate::InSweep => {
+                    Job::InSweep(InSweep::new(load, initial, self.in_sweep_params()))
+                }
+            });
         }
         let scratch = &mut self.scratch;
-        let Some(job) = scratch.job.as_mut() else {
-            unreachable!("a contact iteration was just started")
+        let status = match scratch.job.as_mut() {
+            Some(Job::Outer(job)) => job.advance(
+                &scratch.xfem,
+                &self.state.faces,
+                &mut scratch.factored,
+                &mut self.state.u,
+                scratch.solver.as_mut(),
+                max_iterations,
+            )?,
+            Some(Job::InSweep(job)) => job.run(
+                &scratch.xfem,
+                &self.state.faces,
+                &mut self.state.u,
+                max_iterations,
+            )?,
+            None => unreachable!("a contact iteration was just started"),
         };
-        let status = job.advance(
-            &scratch.xfem,
-            &self.state.faces,
-            &mut scratch.factored,
-            &mut self.state.u,
-            scratch.solver.as_mut(),
-            max_iterations,
-        )?;
         if status.finished {
             self.finish();
         }

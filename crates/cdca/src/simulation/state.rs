@@ -4,8 +4,10 @@
 
 use web_time::Instant;
 
+use super::job::Job;
 use super::search::CriticalRun;
-use crate::contact::iteration::{ContactInfo, ContactParams, ContactSolve};
+use crate::contact::in_sweep::InSweepParams;
+use crate::contact::iteration::{ContactInfo, ContactParams};
 use crate::contact::law::{ContactState, FaceState};
 use crate::discretisation::model::Model;
 use crate::discretisation::xfem::Xfem;
@@ -14,6 +16,7 @@ use crate::fracture::criterion::{Circle, CriterionParams, Faces};
 use crate::geometry::cracks::Crack;
 use crate::report::{GrowthStepReport, Outcome, TipReport};
 use crate::scene::Scene;
+use crate::solvers::automaton::AutomatonParams;
 use crate::solvers::linear::LinearSolver;
 use crate::solvers::relaxation::ResidualSample;
 
@@ -58,7 +61,7 @@ pub(super) struct Scratch {
     pub(super) contact: ContactInfo,
     pub(super) residual: Vec<ResidualSample>,
     /// The solve in progress (the contact iteration), if any.
-    pub(super) job: Option<ContactSolve>,
+    pub(super) job: Option<Job>,
     /// Start of a resumable growth step in progress.
     pub(super) growth_start: Option<Instant>,
     /// Each free tip's utilisation after the last solve (≥ 1: it grows).
@@ -69,7 +72,8 @@ pub(super) struct Scratch {
     /// guess: the slip history stays `State::faces`); `None`: from those.
     pub(super) contact_guess: Option<Vec<FaceState>>,
     /// The contact states `solver`'s current matrix was built with (see
-    /// [`ContactSolve::advance`]); `None` with a new solver or
+    /// [`ContactSolve::advance`](crate::contact::iteration::ContactSolve::advance));
+    /// `None` with a new solver or
     /// discretisation.
     pub(super) factored: Option<Vec<ContactState>>,
     /// Quadrature points the last rebuild left to integrate.
@@ -171,6 +175,24 @@ impl Simulation {
             tolerance: s.contact_tolerance,
             max_iterations: s.max_contact_iterations,
             ..ContactParams::default()
+        }
+    }
+
+    /// The in-sweep iteration's settings: the automaton's as
+    /// [`Relaxation`](crate::solvers::Relaxation) sets them from the scene,
+    /// at most `solver.max_iterations` sweeps.
+    pub(super) fn in_sweep_params(&self) -> InSweepParams {
+        let s = &self.model.scene.solver;
+        InSweepParams {
+            automaton: AutomatonParams {
+                omega: s.omega,
+                tolerance: s.tolerance,
+                tolerance_u: s.tolerance,
+                ..AutomatonParams::default()
+            },
+            ordering: s.ordering,
+            contact: self.contact_params(),
+            max_sweeps: s.max_iterations,
         }
     }
 

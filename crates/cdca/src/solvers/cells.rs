@@ -71,10 +71,8 @@ impl Cells {
             }
             let m = nd.len();
             max_m = max_m.max(m);
-            let mut kii = DMatrix::<f64>::zeros(m, m);
             for e in topo.node_elements(n) {
                 let ed = op.element_dofs(e);
-                let size = ed.len();
                 let first = c.local.len();
                 for &d in nd {
                     let pos = ed.iter().position(|&x| x == d);
@@ -83,26 +81,16 @@ impl Cells {
                     };
                     c.local.push(pos as u16);
                 }
-                let loc = &c.local[first..];
-                let k = op.element_matrix(e);
-                for (a, &la) in loc.iter().enumerate() {
-                    for (b, &lb) in loc.iter().enumerate() {
-                        kii[(a, b)] += k[la as usize * size + lb as usize];
-                    }
-                }
                 c.local_start.push(first);
                 c.link_elem.push(e as u32);
             }
-            let inv = invert_spd(kii).ok_or_else(|| SolveError::NotPositiveDefinite {
-                dofs: op.n,
-                detail: format!("diagonal block of node {n} ({m} DOFs) is not positive definite"),
-            })?;
-            c.inv.extend_from_slice(inv.as_slice());
-            c.inv_start.push(c.inv.len());
+            c.link_start.push(c.link_elem.len());
             c.dofs.extend_from_slice(nd);
             c.dof_start.push(c.dofs.len());
-            c.link_start.push(c.link_elem.len());
             c.node.push(n as u32);
+            let inv = c.inverse_block(op, c.node.len() - 1)?;
+            c.inv.extend_from_slice(inv.as_slice());
+            c.inv_start.push(c.inv.len());
         }
         c.local_start.push(c.local.len());
         c.order = sweep_order(topo, &c.node, ordering);
@@ -118,6 +106,54 @@ impl Cells {
 
     pub fn is_empty(&self) -> bool {
         self.node.is_empty()
+    }
+
+    /// `K_ii⁻¹` of cell `c` from the current element matrices of `op`
+    /// (its links must be in place).
+    fn inverse_block(&self, op: &ElementOperator, c: usize) -> Result<DMatrix<f64>, SolveError> {
+        let m = self.dof_start[c + 1] - self.dof_start[c];
+        let mut kii = DMatrix::<f64>::zeros(m, m);
+        for l in self.link_start[c]..self.link_start[c + 1] {
+            let e = self.link_elem[l] as usize;
+            let size = op.element_dofs(e).len();
+            let loc = &self.local[self.local_start[l]..self.local_start[l] + m];
+            let k = op.element_matrix(e);
+            for (a, &la) in loc.iter().enumerate() {
+                for (b, &lb) in loc.iter().enumerate() {
+                    kii[(a, b)] += k[la as usize * size + lb as usize];
+                }
+            }
+        }
+        invert_spd(kii).ok_or_else(|| SolveError::NotPositiveDefinite {
+            dofs: op.n,
+            detail: format!(
+                "diagonal block of node {} ({m} DOFs) is not positive definite",
+                self.node[c]
+            ),
+        })
+    }
+
+    /// Refactors the diagonal block of cell `c` after the matrix of one of
+    /// its elements in `op` changed (a contact point changed state).
+    pub fn refactor(&mut self, op: &ElementOperator, c: usize) -> Result<(), SolveError> {
+        let inv = self.inverse_block(op, c)?;
+        self.inv[self.inv_start[c]..self.inv_start[c + 1]].copy_from_slice(inv.as_slice());
+        Ok(())
+    }
+
+    /// Node of cell `c`.
+    pub fn node(&self, c: usize) -> usize {
+        self.node[c] as usize
+    }
+
+    /// Free DOFs of cell `c` (standard first).
+    pub fn dofs(&self, c: usize) -> &[u32] {
+        &self.dofs[self.dof_start[c]..self.dof_start[c + 1]]
+    }
+
+    /// The cells in sweep order.
+    pub fn order(&self) -> &[u32] {
+        &self.order
     }
 
     /// One sweep over all cells (forward order, or backward when
@@ -143,9 +179,10 @@ impl Cells {
         Ok(max_du)
     }
 
-    /// Updates cell `c`; returns its `max |Δu|`.
+    /// Updates cell `c` against the running residual `r` (`Δu_c = ω K_cc⁻¹
+    /// r_c`, then `r_k −= K_kc Δu_c`); returns its `max |Δu|`.
     #[inline]
-    fn update(
+    pub fn update(
         &mut self,
         op: &ElementOperator,
         c: usize,

@@ -125,6 +125,15 @@ impl ElementOperator {
         self.matrix(self.mat[e] as usize)
     }
 
+    /// Matrix of element `e`, row-major, for changing it in place. It is
+    /// shared by every element built with the same matrix index (all
+    /// ordinary elements of [`from_xfem`](Self::from_xfem) share one);
+    /// each enriched element there has its own.
+    pub fn element_matrix_mut(&mut self, e: usize) -> &mut [f64] {
+        let i = self.mat[e] as usize;
+        self.matrix_mut(i)
+    }
+
     /// `y = K u`.
     pub fn apply(&self, u: &[f64], y: &mut [f64]) {
         y.fill(0.0);

@@ -45,8 +45,9 @@ pub struct Options {
     pub start_run: Option<StartRun>,
 }
 
-/// A run the app starts by itself (`cdca-workbench SCENE --run relax|grow`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// A run the app starts by itself (`cdca-workbench SCENE --run relax|grow`,
+/// `--study PATH FROM TO COUNT`).
+#[derive(Clone, Debug, PartialEq)]
 pub enum StartRun {
     /// Relax with the scene's solver (the direct solver solves at once).
     Relax,
@@ -54,6 +55,8 @@ pub enum StartRun {
     Grow,
     /// Race the solvers (Compare solvers).
     Compare,
+    /// Run a parameter study (the Study tab's Run study).
+    Study(crate::study::StudySetup),
 }
 
 impl Default for Options {
@@ -326,7 +329,7 @@ impl WorkbenchApp {
             if self.options.solve_on_start {
                 self.run_cmd(ctx, Command::Solve);
             }
-            match self.options.start_run {
+            match self.options.start_run.clone() {
                 Some(StartRun::Relax) if self.scene.solver.kind != SolverKind::Direct => {
                     self.run_cmd(ctx, Command::Relax);
                 }
@@ -340,6 +343,10 @@ impl WorkbenchApp {
                         time_cap: self.race_time_cap,
                     },
                 ),
+                Some(StartRun::Study(setup)) => {
+                    self.study_setup = setup.clone();
+                    self.run_cmd(ctx, Command::RunStudy(setup));
+                }
                 _ => {}
             }
         }
@@ -535,7 +542,7 @@ impl WorkbenchApp {
             });
         egui::Panel::bottom("plots")
             .resizable(true)
-            .default_size(220.0)
+            .default_size(300.0)
             .show(ui, |ui| {
                 // the panel keeps its height whether it shows a plot or a hint
                 ui.set_min_height(ui.available_height());

@@ -4,7 +4,7 @@
 use cdca::scene::SceneFile;
 
 use crate::app::WorkbenchApp;
-use crate::command::{Command, Export};
+use crate::command::{Command, Export, PlotFormat};
 use crate::compare::Race;
 use crate::study::Study;
 use crate::view::Message;
@@ -129,13 +129,13 @@ impl WorkbenchApp {
     }
 
     /// Shows the plot that fits the run a command starts: the residual for
-    /// sweeps, the SIFs for growth, the race for Compare solvers.
+    /// sweeps, the kink angles for growth, the race for Compare solvers.
     fn follow_with_plot(&mut self, cmd: &Command) {
         let iterative = self.scene.solver.kind != cdca::scene::SolverKind::Direct;
         self.plot_tab = match cmd {
             Command::Step | Command::Relax => PlotTab::ResidualBySweep,
             Command::Solve if iterative => PlotTab::ResidualBySweep,
-            Command::GrowOne | Command::RunGrowth => PlotTab::Sifs,
+            Command::GrowOne | Command::RunGrowth => PlotTab::Angles,
             Command::CompareSolvers { .. } => PlotTab::SolverComparison,
             Command::RunStudy(_) => PlotTab::Study,
             Command::SetScene { scene, .. } if scene.solver.kind != self.scene.solver.kind => {
@@ -302,6 +302,30 @@ impl WorkbenchApp {
                     study.to_csv().as_bytes(),
                 ),
             },
+            Export::Plot { tab, index, format } => {
+                let figures = crate::figures::figures(
+                    tab,
+                    self.runner.view(),
+                    self.race.as_ref(),
+                    self.study.as_ref(),
+                    [self.scene.specimen.width, self.scene.specimen.height],
+                );
+                match figures.get(index) {
+                    None => Err("nothing to export: the plot is empty".to_owned()),
+                    Some(fig) => match format {
+                        PlotFormat::Csv => io::save_dialog(
+                            &format!("{stem}_{}.csv", fig.id),
+                            ("CSV", "csv"),
+                            fig.to_csv().as_bytes(),
+                        ),
+                        PlotFormat::Svg => io::save_dialog(
+                            &format!("{stem}_{}.svg", fig.id),
+                            ("SVG picture", "svg"),
+                            fig.to_svg(900.0, 500.0).as_bytes(),
+                        ),
+                    },
+                }
+            }
             Export::CanvasPng => {
                 self.request_canvas_png(ctx);
                 Ok(None)

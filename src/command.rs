@@ -4,6 +4,16 @@
 use cdca::scene::SceneFile;
 
 use crate::study::StudySetup;
+use crate::view::PlotTab;
+
+/// How a plot is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PlotFormat {
+    /// The numbers, one row per point.
+    Csv,
+    /// The picture, for slides.
+    Svg,
+}
 
 /// Files the workbench can write.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -22,6 +32,12 @@ pub enum Export {
     Race,
     /// The parameter study as CSV.
     Study,
+    /// Figure `index` of a plot tab, as CSV or SVG.
+    Plot {
+        tab: PlotTab,
+        index: usize,
+        format: PlotFormat,
+    },
 }
 
 /// One request from the UI.

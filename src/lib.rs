@@ -10,6 +10,8 @@ pub mod compare;
 mod edit;
 mod export;
 mod field;
+mod figure;
+mod figures;
 mod frame_stats;
 mod io;
 mod pacer;

@@ -5,10 +5,13 @@
 /// How to start the workbench from a shell.
 #[cfg(not(target_arch = "wasm32"))]
 const USAGE: &str = "usage: cdca-workbench [SCENE.json] [--run relax|grow|compare]
+                     [--study PATH FROM TO COUNT]
 
 Opens SCENE.json (default: the last scene) and, with --run, starts the
 relaxation (relax), the growth run (grow) or the solver race (compare)
-after the first solve.";
+after the first solve; with --study, a parameter study of the scene field
+PATH (e.g. cracks.0.friction) over COUNT values from FROM to TO, in the
+Study tab's units (MPa, mm, °, or none).";
 
 /// What the command line asks for.
 #[cfg(not(target_arch = "wasm32"))]
@@ -40,6 +43,35 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Option<Launch>, 
                         return Err(format!("--run {other}: expected relax, grow or compare"));
                     }
                 });
+            }
+            "--study" => {
+                let mut next = |what: &str| {
+                    args.next()
+                        .ok_or(format!("--study needs PATH FROM TO COUNT (missing {what})"))
+                };
+                let path = next("PATH")?;
+                let number = |what: &str, text: String| {
+                    text.parse::<f64>()
+                        .ok()
+                        .filter(|v| v.is_finite())
+                        .ok_or(format!("--study {what}: `{text}` is not a number"))
+                };
+                let from = number("FROM", next("FROM")?)?;
+                let to = number("TO", next("TO")?)?;
+                let count_text = next("COUNT")?;
+                let count = count_text
+                    .parse::<usize>()
+                    .ok()
+                    .filter(|&n| (1..=200).contains(&n))
+                    .ok_or(format!(
+                        "--study COUNT: `{count_text}` is not a count from 1 to 200"
+                    ))?;
+                launch.run = Some(StartRun::Study(cdca_workbench::study::StudySetup {
+                    path,
+                    from,
+                    to,
+                    count,
+                }));
             }
             flag if flag.starts_with('-') => return Err(format!("unknown option {flag}")),
             path => {

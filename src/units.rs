@@ -55,9 +55,29 @@ pub fn significant(v: f64) -> String {
     }
 }
 
+/// [`significant`] without trailing zeros (`0.2`, not `0.2000`): values a
+/// user typed, in tables.
+pub fn compact(v: f64) -> String {
+    let s = significant(v);
+    if s.contains('.') && !s.contains('e') {
+        s.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        s
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn compact_drops_trailing_zeros_only() {
+        assert_eq!(compact(0.2), "0.2");
+        assert_eq!(compact(0.0), "0");
+        assert_eq!(compact(120.0), "120");
+        assert_eq!(compact(1.25e-4), "1.250e-4");
+        assert_eq!(compact(-3.5), "-3.5");
+    }
 
     #[test]
     fn stresses_show_in_megapascal() {

@@ -731,6 +731,30 @@ fn a_friction_study_records_the_first_growth_of_each_value() {
         assert!(p.load_factor.is_some_and(|l| l > 0.0 && l <= 1.0 + 1e-12));
     }
     assert!(study.to_csv().lines().count() >= 3);
+    // the table beside the plots shows each measured value: parameter,
+    // λ_cr to 3 decimals, angle to 0.1°
+    let rows: Vec<(String, String, String)> = study
+        .points
+        .iter()
+        .map(|p| {
+            let g = &p.grown[0];
+            (
+                format!("{}", p.value),
+                format!("{:.3}", p.load_factor.unwrap_or_default()),
+                format!("{:.1}", g.angle_deg),
+            )
+        })
+        .collect();
+    h.run();
+    for (value, lambda, angle) in rows {
+        for text in [&value, &lambda, &angle] {
+            assert!(
+                h.query_all_by_label(text).next().is_some(),
+                "the study table does not show {text}"
+            );
+        }
+    }
+    assert!(h.query_by_label("λ_cr [–]").is_some());
 }
 
 /// A relaxation stopped at its cap (the automaton with at most 50 sweeps,

@@ -1,73 +1,44 @@
-//! Histories as plots: residual against sweeps and time (log scale), K_I and
-//! K_II, angles and load factor against growth step, and the solver race's
-//! error against run time. A plot with nothing to show is replaced by a
-//! line saying how to fill it; every axis has numbers and units; each series
-//! has one fixed colour, shared by its line, its markers and its legend.
+//! The plot panel: the residual against sweeps and time, K_I and K_II,
+//! angles and load factor against growth step, the solver race's error
+//! against run time, and the parameter study. Each plot is a
+//! [`Figure`](crate::figure::Figure) from [`figures`](crate::figures):
+//! tick values on both axes (angles every 15° or 30°), titles with units,
+//! the legend above the data (never on it), notes on surprising points, and
+//! CSV and SVG export. A plot with nothing to show is replaced by a line
+//! saying how to fill it.
 
-use std::collections::BTreeMap;
-use std::ops::RangeInclusive;
+use egui::{Color32, Pos2, ProgressBar, RichText, Sense, Stroke, Ui, Vec2};
+use egui_plot::{GridInput, Line, LineStyle, Plot, PlotPoint, PlotPoints, Points, Text, VLine};
 
-use egui::{Color32, ProgressBar, Ui};
-use egui_plot::{GridMark, Legend, Line, LineStyle, Plot, PlotPoint, PlotPoints, Points, VLine};
-
-use crate::command::{Command, Export};
-use crate::compare::{ENERGY_FLOOR, Race};
+use crate::command::{Command, Export, PlotFormat};
+use crate::compare::Race;
+use crate::figure::{Figure, Style, YTicks, tick_label, tick_step};
+use crate::figures::figures;
 use crate::study::{SUGGESTED_PATHS, Study, StudySetup, param_unit};
 use crate::units;
 use crate::view::{AppView, PlotTab};
 
 const TABS: [(PlotTab, &str); 7] = [
-    (PlotTab::ResidualBySweep, "Residual vs sweeps"),
-    (PlotTab::ResidualByTime, "Residual vs time"),
-    (PlotTab::Sifs, "K_I, K_II vs step"),
-    (PlotTab::Angles, "Angles vs step"),
-    (PlotTab::LoadFactor, "Load factor vs crack length"),
-    (PlotTab::SolverComparison, "Solver race: error vs time"),
-    (PlotTab::Study, "Study: angle, mode vs parameter"),
-];
-
-/// Series colours, distinguishable on the dark and the light theme.
-const PALETTE: [Color32; 8] = [
-    Color32::from_rgb(70, 140, 255),
-    Color32::from_rgb(255, 150, 40),
-    Color32::from_rgb(40, 190, 90),
-    Color32::from_rgb(230, 70, 90),
-    Color32::from_rgb(170, 110, 240),
-    Color32::from_rgb(30, 200, 200),
-    Color32::from_rgb(220, 200, 40),
-    Color32::from_rgb(240, 110, 200),
+    (PlotTab::ResidualBySweep, "Residual / sweeps"),
+    (PlotTab::ResidualByTime, "Residual / time"),
+    (PlotTab::Sifs, "K_I, K_II"),
+    (PlotTab::Angles, "Angles"),
+    (PlotTab::LoadFactor, "Load factor"),
+    (PlotTab::SolverComparison, "Solver race"),
+    (PlotTab::Study, "Study"),
 ];
 
 /// Width reserved for y-axis numbers, so labels never disappear.
-const Y_AXIS_WIDTH: f32 = 44.0;
+const Y_AXIS_WIDTH: f32 = 52.0;
 
-fn colour(i: usize) -> Color32 {
-    PALETTE[i % PALETTE.len()]
-}
+/// Smallest distance between two labelled ticks, px.
+const LABEL_SPACING: f64 = 32.0;
 
-/// Axis numbers for log10 values: `1e-6` at whole decades when the grid
-/// steps by decades or more, the value itself (`3.2e-7`) on a finer grid.
-fn log_label(mark: GridMark, _range: &RangeInclusive<f64>) -> String {
-    let v = mark.value;
-    if mark.step_size >= 1.0 - 1e-9 {
-        if (v - v.round()).abs() < 1e-9 {
-            format!("1e{}", v.round())
-        } else {
-            String::new()
-        }
-    } else {
-        format!("{:.1e}", 10f64.powf(v))
-    }
-}
+/// The grid spacing egui_plot's `base_step_size` is scaled by, px.
+const GRID_MIN: f32 = 8.0;
 
-/// A plot with the workbench's common settings.
-fn plot<'a>(id: &'a str, x_label: &str, y_label: &str) -> Plot<'a> {
-    Plot::new(id)
-        .x_axis_label(x_label)
-        .y_axis_label(y_label)
-        .y_axis_min_width(Y_AXIS_WIDTH)
-        .legend(Legend::default())
-}
+/// Smallest height of a plot's data area, px.
+const MIN_PLOT_HEIGHT: f32 = 120.0;
 
 pub fn plots_ui(
     ui: &mut Ui,
@@ -81,103 +52,174 @@ pub fn plots_ui(
             ui.selectable_value(plot_tab, tab, label);
         }
     });
-    let view = v.solution;
-    match *plot_tab {
-        PlotTab::ResidualBySweep => {
-            residual_plot(ui, "residual_sweep", "sweep", &view.residual_by_sweep);
-        }
-        PlotTab::ResidualByTime => {
-            residual_plot(ui, "residual_time", "time [s]", &view.residual_by_time);
-        }
-        PlotTab::Sifs => {
-            let mut series: BTreeMap<(usize, usize, u8), Vec<[f64; 2]>> = BTreeMap::new();
-            for s in &view.history {
-                for t in &s.tips {
-                    series
-                        .entry((t.crack, t.tip, 1))
-                        .or_default()
-                        .push([s.step as f64, t.k1 * 1e-6]);
-                    series
-                        .entry((t.crack, t.tip, 2))
-                        .or_default()
-                        .push([s.step as f64, t.k2 * 1e-6]);
-                }
+    let tab = *plot_tab;
+    let specimen = [v.scene.specimen.width, v.scene.specimen.height];
+    let figs = figures(tab, v.solution, v.race, v.study, specimen);
+    match tab {
+        PlotTab::SolverComparison => race_ui(ui, v.race, &figs, cmds),
+        PlotTab::Study => study_ui(ui, v.study, study_setup, &figs, cmds),
+        _ => match figs.first() {
+            Some(fig) => figure_ui(ui, tab, 0, fig, cmds),
+            None => {
+                ui.weak(empty_hint(tab));
             }
-            step_plot(
-                ui,
-                "sifs",
-                "growth step",
-                "K [MPa·√m]",
-                series,
-                |(c, t, k)| {
-                    format!(
-                        "K_{} crack {} end {}",
-                        if k == 1 { "I" } else { "II" },
-                        c + 1,
-                        t + 1
-                    )
-                },
-            );
-        }
-        PlotTab::Angles => {
-            let mut series: BTreeMap<(usize, usize, u8), Vec<[f64; 2]>> = BTreeMap::new();
-            for s in &view.history {
-                for g in &s.grown {
-                    series
-                        .entry((g.crack, g.tip, 0))
-                        .or_default()
-                        .push([s.step as f64, g.angle_deg]);
-                }
-            }
-            step_plot(
-                ui,
-                "angles",
-                "growth step",
-                "kink angle [°]",
-                series,
-                |(c, t, _)| format!("crack {} end {}", c + 1, t + 1),
-            );
-        }
-        PlotTab::LoadFactor => {
-            let mut series = BTreeMap::new();
-            if !view.history.is_empty() {
-                series.insert(
-                    (0, 0, 0),
-                    view.history
-                        .iter()
-                        .map(|s| [s.crack_length * units::MM_PER_M, s.load_factor])
-                        .collect(),
-                );
-            }
-            // λ rising with the crack length is stable growth, falling unstable
-            step_plot(
-                ui,
-                "load",
-                "total crack length [mm]",
-                "load factor λ [–]",
-                series,
-                |_| "λ".to_owned(),
-            );
-        }
-        PlotTab::SolverComparison => race_ui(ui, v.race, cmds),
-        PlotTab::Study => study_ui(ui, v.study, study_setup, cmds),
+        },
     }
 }
 
-/// The Study tab: the parameter and its values, run / cancel / export, and
-/// the first growth step's kink angle and mode against the parameter.
-fn study_ui(ui: &mut Ui, study: Option<&Study>, setup: &mut StudySetup, cmds: &mut Vec<Command>) {
+fn empty_hint(tab: PlotTab) -> &'static str {
+    match tab {
+        PlotTab::ResidualBySweep | PlotTab::ResidualByTime => {
+            "No residual history: the direct solver solves in one step. Choose an iterative solver and press Step or Relax."
+        }
+        _ => "No growth steps yet: press Grow one step or Run growth.",
+    }
+}
+
+/// Tick steps for egui_plot: the figure's kind of step, sized so that
+/// labelled ticks are at least [`LABEL_SPACING`] apart.
+fn spacer(kind: YTicks) -> impl Fn(GridInput) -> Vec<egui_plot::GridMark> {
+    egui_plot::uniform_grid_spacer(move |input: GridInput| {
+        let per_px = input.base_step_size / f64::from(GRID_MIN);
+        let step = tick_step(kind, per_px * LABEL_SPACING);
+        match kind {
+            YTicks::Degrees => [step / 3.0, step, 2.0 * step],
+            YTicks::Log => [step, step, 10.0 * step],
+            YTicks::Decimal => [step / 5.0, step, 5.0 * step],
+        }
+    })
+}
+
+/// The legend above the data and the export buttons, then the plot.
+fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut Vec<Command>) {
+    ui.horizontal_wrapped(|ui| {
+        for s in &fig.series {
+            swatch(ui, s.colour, Some(s.style));
+            ui.label(&s.name);
+        }
+        for (name, _, colour) in &fig.vlines {
+            swatch(ui, *colour, None);
+            ui.label(name);
+        }
+        for (format, label, hint) in [
+            (PlotFormat::Csv, "CSV…", "Save this plot's numbers as CSV"),
+            (
+                PlotFormat::Svg,
+                "SVG…",
+                "Save this plot as an SVG picture (for slides)",
+            ),
+        ] {
+            if ui.small_button(label).on_hover_text(hint).clicked() {
+                cmds.push(Command::Export(Export::Plot { tab, index, format }));
+            }
+        }
+    });
+    let height = ui.available_height().max(MIN_PLOT_HEIGHT);
+    let kind = fig.y_ticks;
+    let mut plot = Plot::new(&fig.id)
+        .x_axis_label(&fig.x_label)
+        .y_axis_label(&fig.y_label)
+        .y_axis_min_width(Y_AXIS_WIDTH)
+        .height(height)
+        .grid_spacing(GRID_MIN..=300.0)
+        .x_grid_spacer(spacer(YTicks::Decimal))
+        .y_grid_spacer(spacer(kind))
+        .y_axis_formatter(move |m, _| tick_label(kind, m.value, m.step_size));
+    for y in &fig.include_y {
+        plot = plot.include_y(*y);
+    }
+    plot.show(ui, |plot| {
+        for s in &fig.series {
+            let pts = || PlotPoints::from(s.points.clone());
+            match s.style {
+                Style::Line => plot.line(Line::new(&s.name, pts()).color(s.colour)),
+                Style::Dashed => plot.line(
+                    Line::new(&s.name, pts())
+                        .color(s.colour)
+                        .style(LineStyle::dashed_loose()),
+                ),
+                Style::LineAndMarkers => {
+                    plot.line(Line::new(&s.name, pts()).color(s.colour));
+                    plot.points(Points::new(&s.name, pts()).color(s.colour).radius(2.5));
+                }
+                Style::Markers => {
+                    plot.points(Points::new(&s.name, pts()).color(s.colour).radius(4.0));
+                }
+            }
+        }
+        for (name, x, colour) in &fig.vlines {
+            plot.vline(VLine::new(name, *x).color(*colour));
+        }
+        for n in &fig.notes {
+            plot.text(
+                Text::new(
+                    "note",
+                    PlotPoint::new(n.at[0], n.at[1]),
+                    RichText::new(format!("◀ {}", n.text)).small(),
+                )
+                .anchor(egui::Align2::LEFT_CENTER),
+            );
+        }
+    });
+}
+
+/// A legend entry's sample of the series: its line, dashes or marker (a
+/// vertical line for `None`, a reference line).
+fn swatch(ui: &mut Ui, colour: Color32, style: Option<Style>) {
+    let (rect, _) = ui.allocate_exact_size(Vec2::new(20.0, 12.0), Sense::hover());
+    let p = ui.painter();
+    let stroke = Stroke::new(2.0, colour);
+    let (l, r, c) = (rect.left_center(), rect.right_center(), rect.center());
+    match style {
+        None => {
+            p.line_segment([rect.center_top(), rect.center_bottom()], stroke);
+        }
+        Some(Style::Markers) => {
+            p.circle_filled(c, 4.0, colour);
+        }
+        Some(Style::Dashed) => {
+            for k in 0..3 {
+                let x = l.x + 7.0 * k as f32;
+                p.line_segment(
+                    [Pos2::new(x, c.y), Pos2::new((x + 4.0).min(r.x), c.y)],
+                    stroke,
+                );
+            }
+        }
+        Some(Style::Line) => {
+            p.line_segment([l, r], stroke);
+        }
+        Some(Style::LineAndMarkers) => {
+            p.line_segment([l, r], stroke);
+            p.circle_filled(c, 3.0, colour);
+        }
+    }
+}
+
+/// The Study tab: the parameter and its values, run / cancel / export; then
+/// the first growth's kink angle and λ_cr against the parameter, and the
+/// measured values in a table beside them.
+fn study_ui(
+    ui: &mut Ui,
+    study: Option<&Study>,
+    setup: &mut StudySetup,
+    figs: &[Figure],
+    cmds: &mut Vec<Command>,
+) {
     let running = study.is_some_and(|s| !s.finished());
     ui.horizontal_wrapped(|ui| {
-        ui.label("Parameter");
+        let label = ui.label("Parameter");
         egui::ComboBox::from_id_salt("study path")
             .selected_text(setup.path.clone())
             .show_ui(ui, |ui| {
                 for p in SUGGESTED_PATHS {
                     ui.selectable_value(&mut setup.path, p.to_owned(), p);
                 }
-            });
+            })
+            .response
+            .labelled_by(label.id);
         ui.add(egui::TextEdit::singleline(&mut setup.path).desired_width(150.0))
+            .labelled_by(label.id)
             .on_hover_text("Any numeric scene field by its path, e.g. cracks.0.friction, boundary.right.normal, criterion.r0");
         let (unit, _) = param_unit(&setup.path);
         let suffix = if unit == "–" {
@@ -185,12 +227,15 @@ fn study_ui(ui: &mut Ui, study: Option<&Study>, setup: &mut StudySetup, cmds: &m
         } else {
             format!(" {unit}")
         };
-        ui.label("from");
-        ui.add(egui::DragValue::new(&mut setup.from).speed(0.01).suffix(suffix.clone()));
-        ui.label("to");
-        ui.add(egui::DragValue::new(&mut setup.to).speed(0.01).suffix(suffix));
-        ui.label("values");
-        ui.add(egui::DragValue::new(&mut setup.count).range(1..=200));
+        let label = ui.label("from");
+        ui.add(egui::DragValue::new(&mut setup.from).speed(0.01).suffix(suffix.clone()))
+            .labelled_by(label.id);
+        let label = ui.label("to");
+        ui.add(egui::DragValue::new(&mut setup.to).speed(0.01).suffix(suffix))
+            .labelled_by(label.id);
+        let label = ui.label("values");
+        ui.add(egui::DragValue::new(&mut setup.count).range(1..=200))
+            .labelled_by(label.id);
         if ui
             .add_enabled(!running, egui::Button::new("Run study"))
             .on_hover_text("For each value: grow until the first step that extends a tip; record its angle, mode, λ, K_I, K_II")
@@ -202,17 +247,16 @@ fn study_ui(ui: &mut Ui, study: Option<&Study>, setup: &mut StudySetup, cmds: &m
             cmds.push(Command::CancelStudy);
         }
         if ui
-            .add_enabled(study.is_some_and(|s| !s.points.is_empty()), egui::Button::new("Export CSV…"))
+            .add_enabled(study.is_some_and(|s| !s.points.is_empty()), egui::Button::new("Table as CSV…"))
             .clicked()
         {
             cmds.push(Command::Export(Export::Study));
         }
     });
     let Some(study) = study else {
-        ui.weak("Sweeps one scene parameter and plots the first growth step's kink angle and mode against it (press Run study).");
+        ui.weak("Sweeps one scene parameter and plots the first growth step's kink angle and critical load against it (press Run study).");
         return;
     };
-    let (unit, factor) = param_unit(&study.path);
     ui.add(ProgressBar::new(study.progress()).text(format!(
         "{} of {} values{}",
         study.points.len(),
@@ -229,114 +273,60 @@ fn study_ui(ui: &mut Ui, study: Option<&Study>, setup: &mut StudySetup, cmds: &m
             format!("Some values failed: {e}"),
         );
     }
-    let x_label = format!("{} [{unit}]", study.path);
-    let modes = [
-        (cdca::report::Mode::Tension, "tension", 0),
-        (cdca::report::Mode::Shear, "shear", 1),
-    ];
-    ui.columns(2, |cols| {
-        plot("study angle", &x_label, "initial kink angle [°]")
-            .include_y(0.0)
-            .show(&mut cols[0], |plot| {
-                for (mode, name, c) in modes {
-                    let pts: Vec<[f64; 2]> = study
-                        .points
-                        .iter()
-                        .flat_map(|p| {
-                            p.grown
-                                .iter()
-                                .filter(move |g| g.mode == mode)
-                                .map(move |g| [p.value * factor, g.angle_deg])
-                        })
-                        .collect();
-                    plot.points(
-                        Points::new(name, PlotPoints::from(pts))
-                            .color(colour(c))
-                            .radius(4.0),
-                    );
-                }
-            });
-        plot("study mode", &x_label, "mode of the first growth")
-            .include_y(-0.3)
-            .include_y(2.3)
-            .y_axis_formatter(|m, _| match m.value.round() as i64 {
-                0 if (m.value - 0.0).abs() < 1e-9 => "none".to_owned(),
-                1 if (m.value - 1.0).abs() < 1e-9 => "tension".to_owned(),
-                2 if (m.value - 2.0).abs() < 1e-9 => "shear".to_owned(),
-                _ => String::new(),
-            })
-            .show(&mut cols[1], |plot| {
-                let level = |m| match m {
-                    cdca::report::Mode::Tension => 1.0,
-                    cdca::report::Mode::Shear => 2.0,
-                    cdca::report::Mode::None => 0.0,
-                };
-                let mut by_mode: [Vec<[f64; 2]>; 3] = Default::default();
-                for p in &study.points {
-                    if p.grown.is_empty() {
-                        by_mode[2].push([p.value * factor, 0.0]);
-                    }
-                    for g in &p.grown {
-                        let i = usize::from(g.mode == cdca::report::Mode::Shear);
-                        by_mode[i].push([p.value * factor, level(g.mode)]);
-                    }
-                }
-                for (i, (pts, name)) in by_mode
-                    .into_iter()
-                    .zip(["tension", "shear", "none"])
-                    .enumerate()
-                {
-                    plot.points(
-                        Points::new(name, PlotPoints::from(pts))
-                            .color(colour(i))
-                            .radius(4.0),
-                    );
-                }
-            });
-    });
-}
-
-fn residual_plot(ui: &mut Ui, id: &str, x_label: &str, points: &[PlotPoint]) {
-    if points.is_empty() {
-        ui.weak("No residual history: the direct solver solves in one step. Choose an iterative solver and press Step or Relax.");
-        return;
-    }
-    plot(id, x_label, "relative residual |f − K u| / |f| [–], log")
-        .y_axis_formatter(log_label)
-        .show(ui, |plot| {
-            plot.line(
-                Line::new("relative residual", PlotPoints::Borrowed(points)).color(colour(0)),
-            );
-        });
-}
-
-fn step_plot(
-    ui: &mut Ui,
-    id: &str,
-    x_label: &str,
-    y_label: &str,
-    series: BTreeMap<(usize, usize, u8), Vec<[f64; 2]>>,
-    name: impl Fn((usize, usize, u8)) -> String,
-) {
-    if series.is_empty() {
-        ui.weak("No growth steps yet: press Grow one step or Run growth.");
-        return;
-    }
-    plot(id, x_label, y_label).include_y(0.0).show(ui, |plot| {
-        for (i, (key, pts)) in series.into_iter().enumerate() {
-            let label = name(key);
-            let c = colour(i);
-            plot.line(Line::new(label.clone(), PlotPoints::from(pts.clone())).color(c));
-            plot.points(
-                Points::new(label, PlotPoints::from(pts))
-                    .color(c)
-                    .radius(2.5),
-            );
+    ui.columns(3, |cols| {
+        for (i, fig) in figs.iter().enumerate().take(2) {
+            cols[i].push_id(i, |ui| figure_ui(ui, PlotTab::Study, i, fig, cmds));
         }
+        study_table(&mut cols[2], study);
     });
 }
 
-fn race_ui(ui: &mut Ui, race: Option<&Race>, cmds: &mut Vec<Command>) {
+/// The measured values: parameter, λ_cr, first kink angle and mode.
+fn study_table(ui: &mut Ui, study: &Study) {
+    let (unit, factor) = param_unit(&study.path);
+    egui::ScrollArea::vertical().show(ui, |ui| {
+        egui::Grid::new("study table")
+            .striped(true)
+            .num_columns(4)
+            .show(ui, |ui| {
+                ui.strong(format!(
+                    "{} [{unit}]",
+                    study.path.rsplit('.').next().unwrap_or("")
+                ));
+                ui.strong("λ_cr [–]");
+                ui.strong("θ [°]");
+                ui.strong("mode");
+                ui.end_row();
+                for p in &study.points {
+                    ui.label(units::compact(p.value * factor));
+                    match (&p.error, p.grown.first()) {
+                        (Some(e), _) => {
+                            ui.label("–");
+                            ui.label("–");
+                            ui.colored_label(ui.visuals().warn_fg_color, "failed")
+                                .on_hover_text(e);
+                        }
+                        (None, Some(g)) => {
+                            ui.label(p.load_factor.map_or("–".to_owned(), |l| format!("{l:.3}")));
+                            ui.label(format!("{:.1}", g.angle_deg));
+                            ui.label(format!("{:?}", g.mode).to_lowercase());
+                        }
+                        (None, None) => {
+                            ui.label("–");
+                            ui.label("–");
+                            let why = p.outcome.map_or("none".to_owned(), |o| {
+                                format!("none ({o:?})").to_lowercase()
+                            });
+                            ui.label(why);
+                        }
+                    }
+                    ui.end_row();
+                }
+            });
+    });
+}
+
+fn race_ui(ui: &mut Ui, race: Option<&Race>, figs: &[Figure], cmds: &mut Vec<Command>) {
     let Some(race) = race else {
         ui.weak("Races every solver on this scene from u = 0 against the direct solution (press Compare solvers).");
         return;
@@ -355,51 +345,13 @@ fn race_ui(ui: &mut Ui, race: Option<&Race>, cmds: &mut Vec<Command>) {
         }
         ui.weak("solid: energy-norm error, dashed: K error");
         if ui
-            .add_enabled(race.finished(), egui::Button::new("Export CSV…"))
+            .add_enabled(race.finished(), egui::Button::new("Race as CSV…"))
             .clicked()
         {
             cmds.push(Command::Export(Export::Race));
         }
     });
-    plot(
-        "race",
-        "solver run time (setup included) [s]",
-        "relative error [–], log",
-    )
-    .y_axis_formatter(log_label)
-    .include_y(0.0)
-    .include_y(ENERGY_FLOOR.log10())
-    .include_x(0.0)
-    .show(ui, |plot| {
-        for (i, run) in race.runs.iter().enumerate() {
-            let c = colour(i);
-            let name = match &run.error {
-                Some(e) => format!("{} (failed: {e})", run.racer.label()),
-                None => format!("{} ({} it.)", run.racer.label(), run.iterations()),
-            };
-            if i == 0 {
-                // the reference: its time as a vertical line
-                if let Some(s) = run.samples.first() {
-                    plot.vline(
-                        VLine::new(
-                            format!("{}: {}", run.racer.label(), units::seconds(s.seconds)),
-                            s.seconds,
-                        )
-                        .color(c),
-                    );
-                }
-                continue;
-            }
-            plot.line(
-                Line::new(name.clone(), PlotPoints::Borrowed(&run.energy_points))
-                    .color(c)
-                    .width(2.0),
-            );
-            plot.line(
-                Line::new(name, PlotPoints::Borrowed(&run.k_points))
-                    .color(c)
-                    .style(LineStyle::dashed_loose()),
-            );
-        }
-    });
+    if let Some(fig) = figs.first() {
+        figure_ui(ui, PlotTab::SolverComparison, 0, fig, cmds);
+    }
 }

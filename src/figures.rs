@@ -1,0 +1,376 @@
+//! The workbench's plots as [`Figure`]s, built from what the solver
+//! produced: the residual history, the growth history (K, angles, load
+//! factor), the solver race and the parameter study. The plot panel draws
+//! them and the export writes them, so both show the same numbers.
+
+use std::collections::BTreeMap;
+
+use egui::Color32;
+
+use crate::compare::Race;
+use crate::figure::{Figure, Note, Series, Style, YTicks};
+use crate::solution::SolutionView;
+use crate::study::{Study, param_unit};
+use crate::units;
+use crate::view::PlotTab;
+
+/// Series colours, distinguishable on the dark and the light theme (and on
+/// the white of an exported SVG).
+pub const PALETTE: [Color32; 8] = [
+    Color32::from_rgb(70, 140, 255),
+    Color32::from_rgb(255, 150, 40),
+    Color32::from_rgb(40, 190, 90),
+    Color32::from_rgb(230, 70, 90),
+    Color32::from_rgb(170, 110, 240),
+    Color32::from_rgb(30, 200, 200),
+    Color32::from_rgb(220, 200, 40),
+    Color32::from_rgb(240, 110, 200),
+];
+
+pub fn colour(i: usize) -> Color32 {
+    PALETTE[i % PALETTE.len()]
+}
+
+/// The figures of a plot tab (empty when there is nothing to show yet; the
+/// Study tab has two: angle and λ_cr against the parameter). `specimen` is
+/// the specimen's width and height, m.
+pub fn figures(
+    tab: PlotTab,
+    view: &SolutionView,
+    race: Option<&Race>,
+    study: Option<&Study>,
+    specimen: [f64; 2],
+) -> Vec<Figure> {
+    let figure = match tab {
+        PlotTab::ResidualBySweep => residual(
+            "residual_by_sweep",
+            "sweep [–]",
+            view.residual_by_sweep.iter().map(|p| [p.x, p.y]),
+        ),
+        PlotTab::ResidualByTime => residual(
+            "residual_by_time",
+            "time [s]",
+            view.residual_by_time.iter().map(|p| [p.x, p.y]),
+        ),
+        PlotTab::Sifs => sifs(view),
+        PlotTab::Angles => angles(view),
+        PlotTab::LoadFactor => load_factor(view, specimen),
+        PlotTab::SolverComparison => race.map(race_figure),
+        PlotTab::Study => return study.map(study_figures).unwrap_or_default(),
+    };
+    figure.into_iter().collect()
+}
+
+fn residual(id: &str, x_label: &str, points: impl Iterator<Item = [f64; 2]>) -> Option<Figure> {
+    let points: Vec<[f64; 2]> = points.collect();
+    (!points.is_empty()).then(|| Figure {
+        id: id.to_owned(),
+        x_label: x_label.to_owned(),
+        y_label: "relative residual |f − K u| / |f| [–], log".to_owned(),
+        y_ticks: YTicks::Log,
+        series: vec![Series {
+            name: "relative residual".to_owned(),
+            colour: colour(0),
+            style: Style::Line,
+            points,
+        }],
+        ..Figure::default()
+    })
+}
+
+/// Series per (crack, end) in the order met, from the growth history.
+fn per_tip(
+    view: &SolutionView,
+    value: impl Fn(&cdca::report::GrowthStepReport) -> Vec<((usize, usize, u8), f64)>,
+) -> BTreeMap<(usize, usize, u8), Vec<[f64; 2]>> {
+    let mut series: BTreeMap<_, Vec<[f64; 2]>> = BTreeMap::new();
+    for s in &view.history {
+        for (key, v) in value(s) {
+            series.entry(key).or_default().push([s.step as f64, v]);
+        }
+    }
+    series
+}
+
+fn step_series(
+    series: BTreeMap<(usize, usize, u8), Vec<[f64; 2]>>,
+    name: impl Fn((usize, usize, u8)) -> String,
+) -> Vec<Series> {
+    series
+        .into_iter()
+        .enumerate()
+        .map(|(i, (key, points))| Series {
+            name: name(key),
+            colour: colour(i),
+            style: Style::LineAndMarkers,
+            points,
+        })
+        .collect()
+}
+
+fn sifs(view: &SolutionView) -> Option<Figure> {
+    let series = per_tip(view, |s| {
+        s.tips
+            .iter()
+            .flat_map(|t| {
+                [
+                    ((t.crack, t.tip, 1), t.k1 / units::PA_PER_MPA),
+                    ((t.crack, t.tip, 2), t.k2 / units::PA_PER_MPA),
+                ]
+            })
+            .collect()
+    });
+    (!series.is_empty()).then(|| Figure {
+        id: "sifs".to_owned(),
+        x_label: "growth step [–]".to_owned(),
+        y_label: "K [MPa·√m]".to_owned(),
+        series: step_series(series, |(c, t, k)| {
+            let mode = if k == 1 { "I" } else { "II" };
+            format!("K_{mode} crack {} end {}", c + 1, t + 1)
+        }),
+        include_y: vec![0.0],
+        ..Figure::default()
+    })
+}
+
+fn angles(view: &SolutionView) -> Option<Figure> {
+    let series = per_tip(view, |s| {
+        s.grown
+            .iter()
+            .map(|g| ((g.crack, g.tip, 0), g.angle_deg))
+            .collect()
+    });
+    (!series.is_empty()).then(|| Figure {
+        id: "angles".to_owned(),
+        x_label: "growth step [–]".to_owned(),
+        y_label: "kink angle θ [°]".to_owned(),
+        y_ticks: YTicks::Degrees,
+        series: step_series(series, |(c, t, _)| format!("crack {} end {}", c + 1, t + 1)),
+        include_y: vec![0.0],
+        ..Figure::default()
+    })
+}
+
+/// λ against the total crack length. Two kinds of step are marked, as the
+/// load can jump there: one whose wing ran to the specimen's edge (the last
+/// ligament, next to a support or the loaded side, needs a higher load),
+/// and one after which fewer tips are free (a wing left the specimen or
+/// ended on a crack).
+fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure> {
+    let h = &view.history;
+    if h.is_empty() {
+        return None;
+    }
+    let point =
+        |s: &cdca::report::GrowthStepReport| [s.crack_length * units::MM_PER_M, s.load_factor];
+    let tol = 1e-9 * width.max(height);
+    let on_edge = |x: f64, y: f64| x <= tol || y <= tol || x >= width - tol || y >= height - tol;
+    let mut notes: Vec<Note> = h
+        .iter()
+        .filter(|s| s.grown.iter().any(|g| on_edge(g.x, g.y)))
+        .map(|s| Note {
+            at: point(s),
+            text: format!(
+                "λ = {:.3}: a wing ran to the specimen's edge",
+                s.load_factor
+            ),
+        })
+        .collect();
+    notes.extend(
+        h.windows(2)
+            .filter(|pair| pair[1].tips.len() < pair[0].tips.len())
+            .map(|pair| Note {
+                at: point(&pair[1]),
+                text: format!(
+                    "{} → {} free tips: a wing left the specimen or met a crack",
+                    pair[0].tips.len(),
+                    pair[1].tips.len()
+                ),
+            }),
+    );
+    Some(Figure {
+        id: "load_factor".to_owned(),
+        x_label: "total crack length [mm]".to_owned(),
+        y_label: "load factor λ [–]".to_owned(),
+        series: vec![Series {
+            name: "λ of each growth step".to_owned(),
+            colour: colour(0),
+            style: Style::LineAndMarkers,
+            points: h.iter().map(point).collect(),
+        }],
+        notes,
+        include_y: vec![0.0],
+        ..Figure::default()
+    })
+}
+
+fn race_figure(race: &Race) -> Figure {
+    let mut fig = Figure {
+        id: "race".to_owned(),
+        x_label: "solver run time (setup included) [s]".to_owned(),
+        y_label: "relative error [–], log".to_owned(),
+        y_ticks: YTicks::Log,
+        include_y: vec![0.0, crate::compare::ENERGY_FLOOR.log10()],
+        ..Figure::default()
+    };
+    for (i, run) in race.runs.iter().enumerate() {
+        let c = colour(i);
+        if i == 0 {
+            // the reference: its time as a vertical line
+            if let Some(s) = run.samples.first() {
+                let name = format!("{}: {}", run.racer.label(), units::seconds(s.seconds));
+                fig.vlines.push((name, s.seconds, c));
+            }
+            continue;
+        }
+        let name = match &run.error {
+            Some(e) => format!("{} (failed: {e})", run.racer.label()),
+            None => format!("{} ({} it.)", run.racer.label(), run.iterations()),
+        };
+        let pts = |v: &[egui_plot::PlotPoint]| v.iter().map(|p| [p.x, p.y]).collect();
+        fig.series.push(Series {
+            name: format!("{name}, energy-norm error"),
+            colour: c,
+            style: Style::Line,
+            points: pts(&run.energy_points),
+        });
+        fig.series.push(Series {
+            name: format!("{name}, K error"),
+            colour: c,
+            style: Style::Dashed,
+            points: pts(&run.k_points),
+        });
+    }
+    fig
+}
+
+/// The study's first growth against the parameter: the kink angle (one
+/// series per mode) and the critical load factor λ_cr.
+fn study_figures(study: &Study) -> Vec<Figure> {
+    let (unit, factor) = param_unit(&study.path);
+    let x_label = format!("{} [{unit}]", study.path);
+    let modes = [
+        (cdca::report::Mode::Tension, "tension"),
+        (cdca::report::Mode::Shear, "shear"),
+    ];
+    let angle_series = modes
+        .into_iter()
+        .enumerate()
+        .map(|(i, (mode, name))| Series {
+            name: format!("{name} growth"),
+            colour: colour(i),
+            style: Style::Markers,
+            points: study
+                .points
+                .iter()
+                .flat_map(|p| {
+                    p.grown
+                        .iter()
+                        .filter(move |g| g.mode == mode)
+                        .map(move |g| [p.value * factor, g.angle_deg])
+                })
+                .collect(),
+        })
+        .collect();
+    let lambda = study
+        .points
+        .iter()
+        .filter_map(|p| p.load_factor.map(|l| [p.value * factor, l]))
+        .collect();
+    vec![
+        Figure {
+            id: "study_angle".to_owned(),
+            x_label: x_label.clone(),
+            y_label: "first kink angle θ [°]".to_owned(),
+            y_ticks: YTicks::Degrees,
+            series: angle_series,
+            include_y: vec![0.0],
+            ..Figure::default()
+        },
+        Figure {
+            id: "study_load".to_owned(),
+            x_label,
+            y_label: "critical load factor λ_cr [–]".to_owned(),
+            series: vec![Series {
+                name: "λ_cr of the first growth".to_owned(),
+                colour: colour(2),
+                style: Style::LineAndMarkers,
+                points: lambda,
+            }],
+            include_y: vec![0.0],
+            ..Figure::default()
+        },
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cdca::report::{GrownTip, GrowthStepReport, TipReport};
+
+    /// The specimen: 30 mm square.
+    const SIZE: [f64; 2] = [0.03, 0.03];
+
+    fn step(step: usize, lambda: f64, free_tips: usize, angle: f64) -> GrowthStepReport {
+        GrowthStepReport {
+            step,
+            load_factor: lambda,
+            crack_length: 0.004 + 0.0005 * step as f64,
+            tips: (0..free_tips)
+                .map(|t| TipReport {
+                    tip: t,
+                    k1: 1e6 * step as f64,
+                    ..TipReport::default()
+                })
+                .collect(),
+            grown: vec![GrownTip {
+                tip: 1,
+                angle_deg: angle,
+                x: 0.01,
+                y: if free_tips == 1 { 0.03 } else { 0.02 },
+                ..GrownTip::default()
+            }],
+            ..GrowthStepReport::default()
+        }
+    }
+
+    /// The growth plots carry the history's numbers in display units, and
+    /// the load-factor plot marks the step after which a tip stopped being
+    /// free (the jump in λ a class would otherwise not understand).
+    #[test]
+    fn growth_figures_hold_the_history_and_mark_lost_tips() {
+        let view = SolutionView {
+            history: vec![
+                step(1, 0.2, 2, 70.5),
+                step(2, 0.3, 2, 12.0),
+                step(3, 3.4, 1, -4.0),
+            ],
+            ..SolutionView::default()
+        };
+        let angles = &figures(PlotTab::Angles, &view, None, None, SIZE)[0];
+        assert_eq!(angles.series.len(), 1);
+        assert_eq!(
+            angles.series[0].points,
+            vec![[1.0, 70.5], [2.0, 12.0], [3.0, -4.0]]
+        );
+        assert_eq!(angles.y_ticks, YTicks::Degrees);
+        let sifs = &figures(PlotTab::Sifs, &view, None, None, SIZE)[0];
+        let k1_tip0 = &sifs.series[0];
+        assert_eq!(k1_tip0.name, "K_I crack 1 end 1");
+        assert_eq!(k1_tip0.points[2], [3.0, 3.0], "K in MPa·√m");
+        let load = &figures(PlotTab::LoadFactor, &view, None, None, SIZE)[0];
+        // step 3 ran a wing to the top edge (y = 30 mm) and left one tip free
+        assert_eq!(load.notes.len(), 2);
+        assert_eq!(load.notes[0].at, [5.5, 3.4], "x in mm");
+        assert_eq!(
+            load.notes[0].text,
+            "λ = 3.400: a wing ran to the specimen's edge"
+        );
+        assert!(
+            load.notes[1].text.starts_with("2 → 1 free tips"),
+            "{}",
+            load.notes[1].text
+        );
+        assert!(figures(PlotTab::ResidualBySweep, &view, None, None, SIZE).is_empty());
+    }
+}

@@ -31,6 +31,8 @@ impl WorkbenchApp {
                 self.scene_changed(false);
             }
             Command::OpenSceneText { source, text } => self.open_scene_text(source, &text),
+            Command::OpenLink(link) => self.open_link(&link),
+            Command::CopyLink => self.copy_link(ctx),
             Command::OpenBundled(i) => {
                 if let Some(b) = scenes::BUNDLED.get(i) {
                     self.open_scene_text(b.title.to_owned(), b.json);
@@ -218,18 +220,50 @@ impl WorkbenchApp {
         }
     }
 
+    /// Makes `scene` (checked) the scene being edited, with one undo step.
+    fn open_scene(&mut self, source: String, scene: cdca::scene::SceneFile) {
+        self.undo.record(&self.scene, false);
+        self.scene = scene;
+        self.scene_source = source;
+        self.canvas.fit_requested = true;
+        self.editor = crate::edit::Editor::default();
+        self.message = None;
+        self.scene_changed(false);
+    }
+
+    /// Opens the scene of a shared link; a link without a valid scene opens
+    /// the default scene (not the last one, which the sender never saw) and
+    /// says why.
+    fn open_link(&mut self, link: &str) {
+        let problem = match crate::link::from_link(link) {
+            Some(Ok(scene)) => {
+                self.open_scene("shared link".to_owned(), scene);
+                return;
+            }
+            Some(Err(e)) => e,
+            None => "it carries no scene (#scene=…)".to_owned(),
+        };
+        self.open_scene("default scene".to_owned(), scenes::default_scene());
+        self.message = Some(Message::Error(format!(
+            "The shared link could not be opened: {problem}. Showing the default scene."
+        )));
+    }
+
+    /// The scene as File ▸ Save writes it, as a link (see [`crate::link`]).
+    fn copy_link(&mut self, ctx: &egui::Context) {
+        let result = self
+            .scene_file()
+            .map(|json| io::share_link(ctx, &crate::link::to_fragment(&json)));
+        self.message = Some(match result {
+            Ok(text) => Message::Info(text),
+            Err(e) => Message::Error(format!("No link: {e}")),
+        });
+    }
+
     /// Opens a scene file's text; a bad file leaves everything as it was.
     fn open_scene_text(&mut self, source: String, text: &str) {
         match cdca::Scene::from_json(text).map(cdca::Scene::into_file) {
-            Ok(scene) => {
-                self.undo.record(&self.scene, false);
-                self.scene = scene;
-                self.scene_source = source;
-                self.canvas.fit_requested = true;
-                self.editor = crate::edit::Editor::default();
-                self.message = None;
-                self.scene_changed(false);
-            }
+            Ok(scene) => self.open_scene(source, scene),
             Err(e) => {
                 self.message = Some(Message::Error(format!(
                     "Could not open {source}: {e}. The current scene is unchanged."

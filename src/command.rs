@@ -61,6 +61,12 @@ pub enum Command {
     },
     /// Open bundled scene `i` of [`crate::scenes::BUNDLED`].
     OpenBundled(usize),
+    /// Open the scene a shared link carries (`#scene=…`); a link without a
+    /// valid scene opens the default scene and says why.
+    OpenLink(String),
+    /// Put the scene (as File ▸ Save would write it) into a link: in the
+    /// browser the page address, copied to the clipboard.
+    CopyLink,
     /// Ask for a file to open (native dialog).
     OpenDialog,
     /// Ask for a path and write a file.

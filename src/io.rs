@@ -15,6 +15,18 @@ pub struct OpenedFile {
 }
 
 /// Asks for a scene file and reads it. `Ok(None)` when the user cancels.
+/// Copies a scene link's fragment (`scene=…`) to the clipboard; returns
+/// what to tell the user.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn share_link(ctx: &egui::Context, fragment: &str) -> String {
+    ctx.copy_text(format!("#{fragment}"));
+    format!(
+        "Scene link copied to the clipboard ({} characters): append it to the web \
+         workbench's address, or open it here with cdca-workbench --link",
+        fragment.len() + 1
+    )
+}
+
 #[cfg(not(target_arch = "wasm32"))]
 pub fn open_scene_dialog() -> Result<Option<OpenedFile>, String> {
     let Some(path) = rfd::FileDialog::new()
@@ -81,6 +93,22 @@ pub use web::{read_dropped_later, set_repaint_context, take_opened};
 
 /// Starts the browser's file picker; the file arrives through
 /// [`take_opened`] a few frames later. Always `Ok(None)` now.
+/// Puts a scene link into the page address (its fragment: no reload) and
+/// copies the address to the clipboard; returns what to tell the user.
+#[cfg(target_arch = "wasm32")]
+pub fn share_link(ctx: &egui::Context, fragment: &str) -> String {
+    let Some(location) = web_sys::window().map(|w| w.location()) else {
+        return "no page address to put the link in".to_owned();
+    };
+    let _ = location.set_hash(fragment);
+    let href = location.href().unwrap_or_default();
+    ctx.copy_text(href.clone());
+    format!(
+        "Link copied to the clipboard ({} characters); the page address now opens this scene",
+        href.len()
+    )
+}
+
 #[cfg(target_arch = "wasm32")]
 pub fn open_scene_dialog() -> Result<Option<OpenedFile>, String> {
     wasm_bindgen_futures::spawn_local(async {

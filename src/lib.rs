@@ -14,6 +14,7 @@ mod figure;
 mod figures;
 mod frame_stats;
 mod io;
+pub mod link;
 mod pacer;
 mod panels;
 mod persist;

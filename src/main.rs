@@ -4,10 +4,12 @@
 
 /// How to start the workbench from a shell.
 #[cfg(not(target_arch = "wasm32"))]
-const USAGE: &str = "usage: cdca-workbench [SCENE.json] [--run relax|grow|compare]
+const USAGE: &str = "usage: cdca-workbench [SCENE.json | --link LINK] [--run relax|grow|compare]
                      [--study PATH FROM TO COUNT]
 
-Opens SCENE.json (default: the last scene) and, with --run, starts the
+Opens SCENE.json, or the scene a shared link carries (a web address or its
+#scene=… fragment, from File > Copy link to this scene; default: the last
+scene) and, with --run, starts the
 relaxation (relax), the growth run (grow) or the solver race (compare)
 after the first solve; with --study, a parameter study of the scene field
 PATH (e.g. cracks.0.friction) over COUNT values from FROM to TO, in the
@@ -43,6 +45,18 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Option<Launch>, 
                         return Err(format!("--run {other}: expected relax, grow or compare"));
                     }
                 });
+            }
+            "--link" => {
+                let link = args.next().ok_or("--link needs a link (…#scene=…)")?;
+                let scene = match cdca_workbench::link::from_link(&link) {
+                    Some(Ok(scene)) => scene,
+                    Some(Err(e)) => return Err(format!("--link: {e}")),
+                    None => return Err("--link: the link carries no scene (#scene=…)".to_owned()),
+                };
+                if launch.scene.is_some() {
+                    return Err("--link: only one scene can be opened".to_owned());
+                }
+                launch.scene = Some(("shared link".to_owned(), scene));
             }
             "--study" => {
                 let mut next = |what: &str| {

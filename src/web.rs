@@ -41,8 +41,16 @@ impl WebApp {
             cc.egui_ctx.enable_accesskit();
             cc.egui_ctx.add_plugin(WidgetsToPage);
         }
+        let mut app = WorkbenchApp::from_creation_context(cc);
+        // a shared link (`#scene=…`, src/link.rs) opens its scene, solved
+        let hash = web_sys::window()
+            .and_then(|w| w.location().hash().ok())
+            .unwrap_or_default();
+        if hash.contains("scene=") {
+            app.push(Command::OpenLink(hash));
+        }
         Self {
-            app: WorkbenchApp::from_creation_context(cc),
+            app,
             logged_solve: None,
             logged_growth_steps: 0,
             next_report: Instant::now() + REPORT_EVERY,

@@ -1057,3 +1057,40 @@ fn a_run_that_cuts_the_specimen_through_says_it_split_and_keeps_the_last_field()
     h.get_by_label("no (specimen split)");
     h.get_by_label_contains("Specimen split: the final cracks cut it through");
 }
+
+/// A shared link opens its scene (solved, as any opened scene); a
+/// truncated link opens the default scene, not the last one, and says why.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn a_shared_link_opens_its_scene_and_a_bad_one_falls_back_with_a_message() {
+    let mut h = harness(Options::default());
+    h.run_steps(3);
+    let mut shared = h.state().scene().clone();
+    shared.name = "Flaw at 50°, μ = 0.45".to_owned();
+    shared.cracks[0].friction = 0.45;
+    let fragment = cdca_workbench::link::to_fragment(&shared.to_json().expect("json"));
+    h.state_mut().push(Command::OpenLink(format!(
+        "https://example.org/cdca/#{fragment}"
+    )));
+    h.run_steps(3);
+    assert_eq!(h.state().scene(), &shared);
+    assert!(h.state().message().is_none(), "{:?}", h.state().message());
+    assert!(h.state().is_solved(), "the linked scene is solved");
+
+    let truncated = &fragment[..fragment.len() - 40];
+    h.state_mut()
+        .push(Command::OpenLink(format!("#{truncated}")));
+    h.run_steps(3);
+    assert_eq!(h.state().scene(), &cdca_workbench::scenes::default_scene());
+    let Some(Message::Error(e)) = h.state().message() else {
+        panic!("no message: {:?}", h.state().message());
+    };
+    assert!(
+        e.starts_with("The shared link could not be opened: the link is truncated or damaged")
+            && e.ends_with("Showing the default scene."),
+        "{e}"
+    );
+}

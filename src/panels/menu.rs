@@ -33,6 +33,13 @@ pub fn menu_bar_ui(ui: &mut Ui, v: &AppView, s: &mut ViewState, cmds: &mut Vec<C
             if ui.button("Save scene…").clicked() {
                 cmds.push(Command::Export(Export::Scene));
             }
+            if ui
+                .button("Copy link to this scene")
+                .on_hover_text("The scene in a web address (#scene=…): whoever opens it sees the same crack layout, solved")
+                .clicked()
+            {
+                cmds.push(Command::CopyLink);
+            }
             ui.separator();
             let exports = [
                 ("Export crack paths (CSV)…", Export::CrackPaths),

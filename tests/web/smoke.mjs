@@ -23,6 +23,7 @@
 // `window.cdcaWidgets` and its state as `window.cdcaState` (src/web.rs).
 import { chromium } from "playwright-core";
 import { readFileSync, writeFileSync } from "node:fs";
+import { deflateRawSync } from "node:zlib";
 
 const [url, screenshotPath, timingsPath] = process.argv.slice(2);
 if (!url || !screenshotPath) {
@@ -62,10 +63,10 @@ function watch(page, tag = "") {
 
 // Opens the app with its test hooks (`?cdca_test`) and waits until it has
 // started.
-async function open(page) {
+async function open(page, hash = "") {
     const sep = url.includes("?") ? "&" : "?";
-    log(`open ${url}${sep}cdca_test`);
-    await page.goto(`${url}${sep}cdca_test`);
+    log(`open ${url}${sep}cdca_test${hash.slice(0, 40)}${hash.length > 40 ? "…" : ""}`);
+    await page.goto(`${url}${sep}cdca_test${hash}`);
     await page.waitForSelector("#cdca_canvas");
 
     // Started, or a visible failure message?
@@ -252,6 +253,39 @@ try {
     if (opened.message?.startsWith("error")) throw new Error(`after open: ${opened.message}`);
 } catch (e) {
     problems.push(`test: ${e.message}`);
+}
+
+// Shared links (src/link.rs), each in a page of its own: a page opened with
+// `#scene=…` (raw deflate, base64url: what File ▸ Copy link to this scene
+// writes) shows that scene, solved; a truncated link opens the default
+// scene and says why.
+try {
+    for (const context of browser.contexts()) await context.close();
+    await sharedLinks();
+} catch (e) {
+    problems.push(`shared link: ${e.message}`);
+}
+
+async function sharedLinks() {
+    const file = new URL("../../assets/scenes/specimen_two_flaws_stepped.json", import.meta.url);
+    const scene = JSON.parse(readFileSync(file, "utf8"));
+    scene.name = "Linked scene for the class";
+    const fragment = "scene=" + deflateRawSync(Buffer.from(JSON.stringify(scene))).toString("base64url");
+    const cases = [
+        // (the predicates run in the page)
+        ["a shared link", fragment, () => window.cdcaState?.sceneName === "Linked scene for the class" && window.cdcaState?.solved],
+        ["a truncated link", fragment.slice(0, -40), () => /Showing the default scene/.test(window.cdcaState?.message ?? "")],
+    ];
+    for (const [what, link, ok] of cases) {
+        const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+        watch(page, `[${what}] `);
+        await open(page, `#${link}`);
+        const { waitState, state } = hooks(page);
+        await waitState(ok, `${what} (${link.length} characters)`);
+        const s = await state();
+        log(`${what}: scene "${s.sceneName}", solved ${s.solved}, message ${JSON.stringify(s.message)}`);
+        await page.context().close();
+    }
 }
 
 // Frame times during Run growth, in a page of its own (see the top).

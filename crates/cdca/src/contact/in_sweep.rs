@@ -44,7 +44,7 @@
 use web_time::Instant;
 
 use crate::contact::iteration::{
-    ContactInfo, ContactParams, FlipTracker, breaks_law, forced, relative_change, update_followers,
+    ContactParams, FlipTracker, Reached, breaks_law, forced, relative_change, update_followers,
 };
 use crate::contact::law::{ContactState, FaceState, contact_system, gaps, update_point};
 use crate::discretisation::dofs::FIXED;
@@ -105,9 +105,10 @@ pub struct InSweep {
     params: InSweepParams,
     /// The load `λ f_ext` (without contact forces).
     load: Vec<f64>,
-    states: Vec<FaceState>,
+    /// States, status and the relative residual after each sweep (sweep 0:
+    /// the start), with times from the start.
+    reached: Reached,
     tracker: FlipTracker,
-    info: ContactInfo,
     /// Boxed: the cells and operator are large, the rest is small.
     setup: Option<Box<Setup>>,
     sweeps: usize,
@@ -115,8 +116,6 @@ pub struct InSweep {
     residual: f64,
     /// Sweep after which a state last changed (0: none yet).
     last_change: usize,
-    finished: bool,
-    history: Vec<ResidualSample>,
     seconds: f64,
 }
 
@@ -129,15 +128,12 @@ impl InSweep {
         Self {
             params,
             load,
-            states: initial,
+            reached: Reached::new(initial),
             tracker: FlipTracker::new(n),
-            info: ContactInfo::default(),
             setup: None,
             sweeps: 0,
             residual: f64::INFINITY,
             last_change: 0,
-            finished: false,
-            history: Vec::new(),
             seconds: 0.0,
         }
     }
@@ -153,12 +149,7 @@ impl InSweep {
         u: &mut Vec<f64>,
         max_sweeps: usize,
     ) -> Result<RelaxStatus, SolveError> {
-        assert_eq!(
-            self.states.len(),
-            committed.len(),
-            "one state per face point"
-        );
-        if self.finished {
+        if self.reached.ended(committed) {
             return Ok(self.status());
         }
         let clock = Instant::now();
@@ -170,7 +161,7 @@ impl InSweep {
             let residual = relative(norm(&setup.r), norm(&self.load));
             self.residual = residual;
             self.setup = Some(Box::new(setup));
-            self.history.push(ResidualSample {
+            self.reached.history.push(ResidualSample {
                 iteration: 0,
                 seconds: clock.elapsed().as_secs_f64(),
                 residual,
@@ -179,27 +170,27 @@ impl InSweep {
         for _ in 0..max_sweeps.max(1) {
             let residual = self.sweep(x, committed, u)?;
             self.residual = residual;
-            self.history.push(ResidualSample {
+            self.reached.history.push(ResidualSample {
                 iteration: self.sweeps,
                 seconds: self.seconds + clock.elapsed().as_secs_f64(),
                 residual,
             });
-            if self.finished {
-                self.info.last.history = self.history[self.last_change..]
+            if self.reached.finished {
+                self.reached.info.last.history = self.reached.history[self.last_change..]
                     .iter()
                     .map(|h| h.residual)
                     .collect();
                 break;
             }
         }
-        update_followers(x, u, &mut self.states);
+        update_followers(x, u, &mut self.reached.states);
         self.seconds += clock.elapsed().as_secs_f64();
         Ok(self.status())
     }
 
     fn build(&self, x: &Xfem, committed: &[FaceState], u: &[f64]) -> Result<Setup, SolveError> {
         let mut f = self.load.clone();
-        let blocks = contact_system(x, &self.states, committed, &mut f);
+        let blocks = contact_system(x, &self.reached.states, committed, &mut f);
         let op = ElementOperator::from_xfem(x, &blocks);
         let cells = Automaton::cells_of(x, &op, self.params.ordering)?;
         let mut r = vec![0.0; op.n];
@@ -207,7 +198,7 @@ impl InSweep {
         let applied = x
             .faces
             .iter()
-            .zip(&self.states)
+            .zip(&self.reached.states)
             .zip(committed)
             .map(|((fp, s), c)| applied_of(x, fp, s, c.slip))
             .collect();
@@ -297,7 +288,7 @@ impl InSweep {
                     p,
                     committed[p].slip,
                     u,
-                    &mut self.states[p],
+                    &mut self.reached.states[p],
                     &mut self.tracker,
                     counted,
                 )?);
@@ -327,22 +318,23 @@ impl InSweep {
             s.op.residual(&s.f, u, &mut s.r);
             s.since_refresh = 0;
             residual = relative(norm(&s.r), norm_load);
-            let (consistent, violating) = final_check(x, committed, u, &self.states, &self.tracker);
-            self.info.violating = violating;
+            let (consistent, violating) =
+                final_check(x, committed, u, &self.reached.states, &self.tracker);
+            self.reached.info.violating = violating;
             passed = residual <= a.tolerance && consistent;
             if passed && change <= self.params.contact.tolerance {
-                self.info.converged = violating == 0;
-                self.finished = true;
+                self.reached.info.converged = violating == 0;
+                self.reached.finished = true;
             }
         }
         if self.sweeps >= self.params.max_sweeps.max(1) {
-            self.finished = true;
+            self.reached.finished = true;
         }
-        self.info.iterations = self.sweeps;
-        self.info.linear_iterations = self.sweeps;
-        self.info.residual = change;
-        self.info.cycling = self.tracker.frozen();
-        self.info.last = LinearInfo {
+        self.reached.info.iterations = self.sweeps;
+        self.reached.info.linear_iterations = self.sweeps;
+        self.reached.info.residual = change;
+        self.reached.info.cycling = self.tracker.frozen();
+        self.reached.info.last = LinearInfo {
             iterations: self.sweeps,
             residual,
             converged: passed,
@@ -354,40 +346,21 @@ impl InSweep {
     fn status(&self) -> RelaxStatus {
         RelaxStatus {
             iterations: self.sweeps,
-            residual: self.info.last.residual,
-            converged: self.finished && self.info.converged,
-            finished: self.finished,
+            residual: self.reached.info.last.residual,
+            converged: self.reached.finished && self.reached.info.converged,
+            finished: self.reached.finished,
         }
     }
 
-    /// The contact states as the sweeps left them (the result once
-    /// finished).
-    pub fn states(&self) -> &[FaceState] {
-        &self.states
+    /// Where the iteration stands: states, status, residual samples (the
+    /// result once finished).
+    pub fn reached(&self) -> &Reached {
+        &self.reached
     }
 
-    /// How the iteration went so far (how it ended, once finished):
-    /// `iterations` and `linear_iterations` count sweeps, `residual` is the
-    /// last sweep's `‖Δu‖/‖u‖`, and `last` covers the sweeps since a state
-    /// last changed (its `history` is filled once finished).
-    pub fn info(&self) -> &ContactInfo {
-        &self.info
-    }
-
-    /// Whether the iteration has ended.
-    pub fn is_finished(&self) -> bool {
-        self.finished
-    }
-
-    /// The relative residual after each sweep (sweep 0: the start), with
-    /// times counted from the start.
-    pub fn history(&self) -> &[ResidualSample] {
-        &self.history
-    }
-
-    /// The final states and status.
-    pub fn into_result(self) -> (Vec<FaceState>, ContactInfo) {
-        (self.states, self.info)
+    /// The result.
+    pub fn into_reached(self) -> Reached {
+        self.reached
     }
 }
 

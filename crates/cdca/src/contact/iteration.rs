@@ -82,19 +82,53 @@ pub struct ContactSolve {
     params: ContactParams,
     /// The load `λ f_ext` (without contact forces).
     load: Vec<f64>,
-    states: Vec<FaceState>,
+    /// States, status and residual samples (those of the finished contact
+    /// iterations, then those of the current one, with cumulative
+    /// iterations and times).
+    reached: Reached,
     tracker: FlipTracker,
-    info: ContactInfo,
     /// The current contact iteration's system, once assembled.
     system: Option<System>,
     /// Displacement at the start of the current contact iteration.
     before: Vec<f64>,
-    finished: bool,
-    /// Progress samples of the finished contact iterations, then those of
-    /// the current one, with cumulative iterations and times.
-    history: Vec<ResidualSample>,
     done_iterations: usize,
     done_seconds: f64,
+}
+
+/// Where a contact iteration stands, the outer loop's ([`ContactSolve`])
+/// or the in-sweep rule's
+/// ([`InSweep`](crate::contact::in_sweep::InSweep)): the contact states,
+/// how it went, whether it ended, and the residual samples so far.
+#[derive(Clone, Debug, Default)]
+pub struct Reached {
+    /// The states as they are now (the result once finished).
+    pub states: Vec<FaceState>,
+    /// How it went so far (how it ended, once finished).
+    pub info: ContactInfo,
+    pub finished: bool,
+    /// Relative residual samples, iterations and times from the start.
+    pub history: Vec<ResidualSample>,
+}
+
+impl Reached {
+    /// The start: the states `initial`, nothing done.
+    pub fn new(initial: Vec<FaceState>) -> Self {
+        Self {
+            states: initial,
+            ..Self::default()
+        }
+    }
+
+    /// Whether the iteration has ended; `committed` must hold one state per
+    /// face point (the caller's slip history of this discretisation).
+    pub(crate) fn ended(&self, committed: &[FaceState]) -> bool {
+        assert_eq!(
+            self.states.len(),
+            committed.len(),
+            "one state per face point"
+        );
+        self.finished
+    }
 }
 
 /// The linear system of one contact iteration.
@@ -114,13 +148,10 @@ impl ContactSolve {
         Self {
             params,
             load,
-            states: initial,
+            reached: Reached::new(initial),
             tracker: FlipTracker::new(n),
-            info: ContactInfo::default(),
             system: None,
             before: Vec::new(),
-            finished: false,
-            history: Vec::new(),
             done_iterations: 0,
             done_seconds: 0.0,
         }
@@ -143,7 +174,7 @@ impl ContactSolve {
     /// factorisations in a 40-step growth run, 123 were these).
     ///
     /// Returns the progress; `finished` once the iteration has ended, with
-    /// [`info`](Self::info) saying how.
+    /// [`reached`](Self::reached)`.info` saying how.
     pub fn advance(
         &mut self,
         x: &Xfem,
@@ -153,18 +184,13 @@ impl ContactSolve {
         solver: &mut dyn LinearSolver,
         max_iterations: usize,
     ) -> Result<RelaxStatus, SolveError> {
-        assert_eq!(
-            self.states.len(),
-            committed.len(),
-            "one state per face point"
-        );
-        if self.finished {
+        if self.reached.ended(committed) {
             return Ok(self.status(true));
         }
         let Some(system) = &mut self.system else {
             let mut f = self.load.clone();
-            let blocks = contact_system(x, &self.states, committed, &mut f);
-            let kinds: Vec<ContactState> = self.states.iter().map(|s| s.state).collect();
+            let blocks = contact_system(x, &self.reached.states, committed, &mut f);
+            let kinds: Vec<ContactState> = self.reached.states.iter().map(|s| s.state).collect();
             let matrix_changed = factored.as_ref() != Some(&kinds);
             // unknown until the setup below has succeeded
             *factored = None;
@@ -180,7 +206,7 @@ impl ContactSolve {
         let samples = solver.samples();
         // later contact iterations do not repeat the iteration-0 sample
         let later = self.done_iterations > 0;
-        self.history.extend(
+        self.reached.history.extend(
             samples[system.copied.min(samples.len())..]
                 .iter()
                 .filter(|s| !(later && s.iteration == 0))
@@ -203,24 +229,24 @@ impl ContactSolve {
         let lin = solver.info();
         self.done_iterations += lin.iterations;
         self.done_seconds += samples.last().map_or(0.0, |s| s.seconds);
-        self.info.linear_iterations += lin.iterations;
+        self.reached.info.linear_iterations += lin.iterations;
         let linear_converged = lin.converged;
-        self.info.last = lin;
+        self.reached.info.last = lin;
         self.system = None;
-        let it = self.info.iterations + 1;
+        let it = self.reached.info.iterations + 1;
         let update = update_states(
             x,
             u,
             committed,
-            &mut self.states,
+            &mut self.reached.states,
             &mut self.tracker,
             self.params,
         );
-        self.info.iterations = it;
-        self.info.residual = relative_change(u, &self.before);
-        self.info.violating = update.violating;
-        self.info.cycling = self.tracker.frozen();
-        if !self.info.residual.is_finite() {
+        self.reached.info.iterations = it;
+        self.reached.info.residual = relative_change(u, &self.before);
+        self.reached.info.violating = update.violating;
+        self.reached.info.cycling = self.tracker.frozen();
+        if !self.reached.info.residual.is_finite() {
             return Err(SolveError::NonFinite {
                 place: format!("contact iteration {it}"),
             });
@@ -228,51 +254,40 @@ impl ContactSolve {
         // an unconverged linear solve ends the iteration: states updated
         // from it mean little, and the status says so
         if !linear_converged {
-            self.finished = true;
-        } else if settled(&update, &self.states, self.info.residual, self.params) {
-            self.info.converged = update.violating == 0;
-            self.finished = true;
+            self.reached.finished = true;
+        } else if settled(
+            &update,
+            &self.reached.states,
+            self.reached.info.residual,
+            self.params,
+        ) {
+            self.reached.info.converged = update.violating == 0;
+            self.reached.finished = true;
         } else if it >= self.params.max_contact_iterations() {
-            self.info.capped = true;
-            self.finished = true;
+            self.reached.info.capped = true;
+            self.reached.finished = true;
         }
-        Ok(self.status(self.finished))
+        Ok(self.status(self.reached.finished))
     }
 
     fn status(&self, finished: bool) -> RelaxStatus {
         RelaxStatus {
             iterations: self.done_iterations,
-            residual: self.info.last.residual,
-            converged: finished && self.info.converged,
+            residual: self.reached.info.last.residual,
+            converged: finished && self.reached.info.converged,
             finished,
         }
     }
 
-    /// The contact states of the current contact iteration (the result once
-    /// finished).
-    pub fn states(&self) -> &[FaceState] {
-        &self.states
+    /// Where the iteration stands: states, status, residual samples (the
+    /// result once finished).
+    pub fn reached(&self) -> &Reached {
+        &self.reached
     }
 
-    /// How the iteration went so far (how it ended, once finished).
-    pub fn info(&self) -> &ContactInfo {
-        &self.info
-    }
-
-    /// Whether the iteration has ended.
-    pub fn is_finished(&self) -> bool {
-        self.finished
-    }
-
-    /// Residual samples of every linear solve so far, with iterations and
-    /// times counted from the start of the contact iteration.
-    pub fn history(&self) -> &[ResidualSample] {
-        &self.history
-    }
-
-    /// The final states and status.
-    pub fn into_result(self) -> (Vec<FaceState>, ContactInfo) {
-        (self.states, self.info)
+    /// The result.
+    pub fn into_reached(self) -> Reached {
+        self.reached
     }
 }
 
@@ -316,7 +331,8 @@ pub fn solve_with_contact_from(
         .advance(x, committed, factored, u, solver, usize::MAX)?
         .finished
     {}
-    Ok(iteration.into_result())
+    let reached = iteration.into_reached();
+    Ok((reached.states, reached.info))
 }
 
 /// Per point: how often it changed state, and whether it is frozen.

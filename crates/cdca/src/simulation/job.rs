@@ -3,9 +3,7 @@
 //! automaton with the contact states updated in its sweeps.
 
 use crate::contact::in_sweep::InSweep;
-use crate::contact::iteration::{ContactInfo, ContactSolve};
-use crate::contact::law::FaceState;
-use crate::solvers::relaxation::ResidualSample;
+use crate::contact::iteration::{ContactSolve, Reached};
 
 /// The solve in progress: how the contact states are updated.
 pub(super) enum Job {
@@ -16,26 +14,19 @@ pub(super) enum Job {
 }
 
 impl Job {
-    /// The contact states as they are now.
-    pub(super) fn states(&self) -> &[FaceState] {
+    /// Where the solve stands: states, status, residual samples.
+    pub(super) fn reached(&self) -> &Reached {
         match self {
-            Job::Outer(j) => j.states(),
-            Job::InSweep(j) => j.states(),
+            Job::Outer(j) => j.reached(),
+            Job::InSweep(j) => j.reached(),
         }
     }
 
-    /// Residual samples so far.
-    pub(super) fn history(&self) -> &[ResidualSample] {
+    /// The result.
+    pub(super) fn into_reached(self) -> Reached {
         match self {
-            Job::Outer(j) => j.history(),
-            Job::InSweep(j) => j.history(),
-        }
-    }
-
-    pub(super) fn into_result(self) -> (Vec<FaceState>, ContactInfo) {
-        match self {
-            Job::Outer(j) => j.into_result(),
-            Job::InSweep(j) => j.into_result(),
+            Job::Outer(j) => j.into_reached(),
+            Job::InSweep(j) => j.into_reached(),
         }
     }
 }

@@ -93,10 +93,10 @@ impl Simulation {
         let Some(job) = self.scratch.job.take() else {
             return;
         };
-        self.scratch.residual = job.history().to_vec();
-        let (states, info) = job.into_result();
-        self.state.faces = states;
-        self.scratch.contact = info;
+        let reached = job.into_reached();
+        self.scratch.residual = reached.history;
+        self.state.faces = reached.states;
+        self.scratch.contact = reached.info;
         self.state.solved = true;
         self.evaluate();
     }
@@ -107,6 +107,6 @@ impl Simulation {
         self.scratch
             .job
             .as_ref()
-            .map_or(&self.scratch.residual, |j| j.history())
+            .map_or(&self.scratch.residual, |j| &j.reached().history)
     }
 }

@@ -117,7 +117,7 @@ impl Simulation {
             .scratch
             .job
             .as_ref()
-            .map_or(&self.state.faces[..], |j| j.states());
+            .map_or(&self.state.faces[..], |j| &j.reached().states[..]);
         self.scratch
             .xfem
             .faces

@@ -5,7 +5,7 @@
 mod common;
 
 use cdca::Simulation;
-use cdca::report::TipReport;
+use cdca::report::{Mode, TipReport};
 use cdca::scene::{Sampling, SceneFile, SideBc};
 use common::*;
 
@@ -162,5 +162,188 @@ fn interaction_integral_t_of_a_closed_crack_is_sigma11_minus_sigma22() {
         .expect("solve");
     for t in &report.tips {
         assert!(rel(t.t_stress, 7.5e6) < 0.02, "T = {:.4e}", t.t_stress);
+    }
+}
+
+/// Half-length of the sliding-crack plate's crack, m.
+const A_SLIDE: f64 = 0.03;
+
+/// Reference vertical compression of the sliding-crack plate, Pa.
+const P_SLIDE: f64 = 10e6;
+
+/// The paper's 0.3 m plate (its rock, plane stress), 100 × 100 (h = 3 mm =
+/// a/10), with a closed crack of half-length 30 mm at 45° off the grid
+/// lines and diagonals, face friction `mu`, penalty contact, under uniaxial
+/// compression P_SLIDE (roller bottom and left, right free), `r0 = a /
+/// a_over_r0`.
+fn sliding_plate(mu: f64, a_over_r0: f64) -> cdca::Scene {
+    let mut s = bundled("plate_45_biaxial_k0.2_mu0.5");
+    (s.mesh.nx, s.mesh.ny) = (100, 100);
+    s.boundary.right = SideBc::Free;
+    s.boundary.top = SideBc::Traction {
+        normal: -P_SLIDE,
+        shear: 0.0,
+    };
+    let mut crack = centre_crack(0.1507, 0.1496, A_SLIDE, 45.0);
+    crack.friction = mu;
+    s.cracks = vec![crack];
+    s.criterion.r0 = Some(A_SLIDE / a_over_r0);
+    valid(s)
+}
+
+/// λ of the wing from a sliding crack at 45° to a uniaxial compression
+/// λ P_SLIDE (σ_n = τ = λP/2), and its kink angle (degrees, magnitude), as
+/// the default (hybrid) sampling sees it with the exact infinite-plate
+/// K_II = (τ − μσ_n)√(πa) (K_I = 0): σ_θθ(θ, r0) = K_II/√(2πr0) ·
+/// (−3/2 sin θ cos θ/2) − σ_n − 2 μσ_n sin θ cos θ ≥ σ_t = K_IC/√(2πr0).
+/// As r0/a → 0 the uniform terms vanish against the singular one and this
+/// tends to the LEFM sliding-crack form [`lefm_wing_load`].
+fn finite_r0_wing_load(mu: f64, r0: f64, k_ic: f64) -> (f64, f64) {
+    let k2 = 0.5 * (1.0 - mu) * (PI * A_SLIDE).sqrt();
+    let (th, g) = (0..=18_000)
+        .map(|j| (-90.0 + 0.01 * f64::from(j)).to_radians())
+        .map(|th| {
+            let (st, ct) = th.sin_cos();
+            let singular = k2 / (2.0 * PI * r0).sqrt() * (-1.5 * st * (0.5 * th).cos());
+            (th, singular - 0.5 - 2.0 * 0.5 * mu * st * ct)
+        })
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .expect("angles");
+    (
+        k_ic / (2.0 * PI * r0).sqrt() / g / P_SLIDE,
+        th.to_degrees().abs(),
+    )
+}
+
+/// λ at which the LEFM sliding crack starts a wing: the kink's largest
+/// K_I, (2/√3) K_II at θ = 70.5° for a pure K_II tip (Erdogan & Sih 1963),
+/// with the sliding crack's K_II = (τ − μσ_n)√(πa) (Horii & Nemat-Nasser
+/// 1986; Ashby & Hallam 1986), reaches K_IC: (2/√3)(τ − μσ_n)√(πa) = K_IC,
+/// with σ_n = τ = λ P_SLIDE / 2 at 45°.
+fn lefm_wing_load(mu: f64, k_ic: f64) -> f64 {
+    k_ic / ((2.0 / 3f64.sqrt()) * 0.5 * (1.0 - mu) * (PI * A_SLIDE).sqrt()) / P_SLIDE
+}
+
+/// Issue 17, item 3: how the initiation load of a closed frictional crack
+/// under uniaxial compression approaches the sliding-crack closed form as
+/// a/r0 grows (a = 30 mm in the 0.3 m plate, r0 = a/3 … a/100; μ = 0 and
+/// 0.5; critical control, `cdca::initiation`).
+///
+/// For a/r0 ≥ 10 the first growth is a tension wing whose λ_cr is within
+/// 6% (measured 2.7–4.5% below) and whose angle is within 2° (measured
+/// ≤ 0.3°) of the hybrid sampling's own closed form
+/// ([`finite_r0_wing_load`]; the computed K_II is ≈ 2% above the
+/// infinite-plate value, a/W = 0.1, and the uniform term amplifies that
+/// at small a/r0); the excess over LEFM
+/// ([`lefm_wing_load`]) falls strictly with a/r0 and is below 20% at
+/// a/r0 = 100, where the uniform compression at r0 still costs
+/// ≈ (√3/2)√(2r0/a)/(1 − μ) of the singular term (12% at μ = 0). The
+/// a/r0 = 3 row is printed, not asserted (the faces' shear branch,
+/// K_II = K_IIC, fires first there: the issue's small-flaw problem).
+#[test]
+fn initiation_load_approaches_the_sliding_crack_closed_form() {
+    let k_ic = bundled("plate_45_biaxial_k0.2_mu0.5").material.k_ic;
+    for mu in [0.0, 0.5] {
+        let lefm = lefm_wing_load(mu, k_ic);
+        let mut last_ratio = f64::INFINITY;
+        for a_over_r0 in [3.0, 10.0, 30.0, 100.0] {
+            let r0 = A_SLIDE / a_over_r0;
+            let init = cdca::initiation(&sliding_plate(mu, a_over_r0)).expect("initiation");
+            let (model, model_angle) = finite_r0_wing_load(mu, r0, k_ic);
+            let ratio = init.lambda_cr / lefm;
+            println!(
+                "μ = {mu}, a/r0 = {a_over_r0}: {:?} {:.1}° λ_cr {:.4}, LEFM {lefm:.4} \
+                 (×{ratio:.3}), finite-r0 form {model:.4} at {model_angle:.1}° (×{:.3})",
+                init.mode,
+                init.angle_deg.abs(),
+                init.lambda_cr,
+                init.lambda_cr / model
+            );
+            assert!(init.converged, "a/r0 = {a_over_r0}");
+            if a_over_r0 < 10.0 {
+                continue;
+            }
+            assert_eq!(init.mode, Mode::Tension, "a/r0 = {a_over_r0}");
+            assert!(rel(init.lambda_cr, model) < 0.06, "a/r0 = {a_over_r0}");
+            assert!((init.angle_deg.abs() - model_angle).abs() < 2.0);
+            assert!(ratio < last_ratio && ratio >= 1.0, "a/r0 = {a_over_r0}");
+            last_ratio = ratio;
+        }
+        assert!(last_ratio < 1.2, "μ = {mu}: ×{last_ratio:.3} at a/r0 = 100");
+    }
+}
+
+/// The same plate with `criterion.sampling = "williams"` (the K_I, K_II, T
+/// expansion, no face tractions): the check is then σ_θθ√(2πr0) =
+/// K-terms + T sin²θ √(2πr0) ≥ K_IC with T ≈ 0 on a 45° crack in uniaxial
+/// compression, so λ_cr is the LEFM sliding-crack load at every a/r0
+/// (measured ×0.977–0.980 at μ = 0 and 0.5, a/r0 = 3…100: the computed K_II
+/// is ≈ 2% above the infinite-plate value) and the wing starts at 70.5° at
+/// both frictions, within 3% and 1°. The excess of the default sampling over
+/// LEFM at small a/r0 (and its shear at a/r0 = 3) is its uniform
+/// compression at r0, not the K-field.
+#[test]
+fn williams_sampling_gives_the_sliding_crack_load_at_any_radius() {
+    let k_ic = bundled("plate_45_biaxial_k0.2_mu0.5").material.k_ic;
+    for mu in [0.0, 0.5] {
+        let lefm = lefm_wing_load(mu, k_ic);
+        for a_over_r0 in [3.0, 10.0, 30.0, 100.0] {
+            let scene = sliding_plate(mu, a_over_r0)
+                .edit(|s| s.criterion.sampling = Sampling::Williams)
+                .expect("valid");
+            let init = cdca::initiation(&scene).expect("initiation");
+            println!(
+                "μ = {mu}, a/r0 = {a_over_r0}: {:?} {:.2}° λ_cr {:.4} (×{:.3} LEFM)",
+                init.mode,
+                init.angle_deg.abs(),
+                init.lambda_cr,
+                init.lambda_cr / lefm
+            );
+            assert!(init.converged && init.mode == Mode::Tension);
+            assert!(rel(init.lambda_cr, lefm) < 0.03, "a/r0 = {a_over_r0}");
+            assert!((init.angle_deg.abs() - 70.53).abs() < 1.0);
+        }
+    }
+}
+
+/// Face friction on the default scene (issue 17, item 2), initiation under
+/// critical control at μ = 0, 0.2, 0.4, 0.6. With the scene's soft joint
+/// (200 / 20 GPa/m) the faces stick for every μ ≥ 0.2 and λ_cr is the same
+/// there (0.2015, then 0.2071 three times; printed, not asserted: that is
+/// the issue). With the contact a drawn crack gets (the penalty joint) and
+/// r0 = a/10 = 0.3 mm (inside the flaw's K-dominant zone, see
+/// `initiation_load_approaches_the_sliding_crack_closed_form`), friction
+/// acts as in the sliding-crack picture: every μ starts a tension wing,
+/// λ_cr rises strictly (measured 0.286, 0.375, 0.527, 0.834) and the wing
+/// angle falls strictly (70.7°, 65.9°, 60.9°, 55.6°).
+#[test]
+fn friction_raises_the_wing_load_with_the_default_contact() {
+    let run = |penalty: bool| -> Vec<cdca::Initiation> {
+        [0.0, 0.2, 0.4, 0.6]
+            .iter()
+            .map(|&mu| {
+                let mut s = bundled("specimen_single_flaw");
+                s.cracks[0].friction = mu;
+                if penalty {
+                    s.cracks[0].normal_stiffness = None;
+                    s.cracks[0].shear_stiffness = None;
+                    s.criterion.r0 = Some(0.0003);
+                }
+                let i = cdca::initiation(&valid(s)).expect("initiation");
+                println!(
+                    "penalty {penalty}, μ = {mu}: {:?} {:.1}° λ_cr {:.4}",
+                    i.mode, i.angle_deg, i.lambda_cr
+                );
+                assert!(i.converged, "μ = {mu}");
+                i
+            })
+            .collect()
+    };
+    run(false);
+    let rows = run(true);
+    assert!(rows.iter().all(|i| i.mode == Mode::Tension), "{rows:?}");
+    for w in rows.windows(2) {
+        assert!(w[1].lambda_cr > w[0].lambda_cr, "{rows:?}");
+        assert!(w[1].angle_deg.abs() < w[0].angle_deg.abs(), "{rows:?}");
     }
 }

@@ -413,7 +413,7 @@ fn solve_exits_1_when_the_contact_iteration_is_capped() {
     assert_eq!(run.stderr.trim_end().lines().count(), 1, "{}", run.stderr);
     assert!(
         run.stderr.starts_with(
-            "cdca: the contact states were still changing after 1 contact iterations \
+            "cdca: the contact iteration did not settle within 1 contact iterations \
              (solver.max_contact_iterations)"
         ),
         "{}",

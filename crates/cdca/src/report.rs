@@ -57,8 +57,9 @@ pub struct ContactReport {
     /// Relative change of the displacement in the last contact iteration.
     #[serde(default)]
     pub residual: f64,
-    /// The iteration reached `solver.max_contact_iterations` with states
-    /// still changing (written only when true).
+    /// The iteration reached `solver.max_contact_iterations` without
+    /// settling: states still changing, or (with slip) the displacement
+    /// still moving (written only when true).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub capped: bool,
 }
@@ -211,9 +212,10 @@ impl SolveReport {
             None
         } else if c.capped {
             Some(format!(
-                "the contact states were still changing after {} contact iterations \
-                 (solver.max_contact_iterations); last relative change of u {:.3e}, \
-                 {} points frozen for stick–slip cycling",
+                "the contact iteration did not settle within {} contact iterations \
+                 (solver.max_contact_iterations): states still changing or, with slip, \
+                 u still moving (last relative change {:.3e}); {} points frozen for \
+                 stick–slip cycling",
                 c.iterations, c.residual, c.cycling
             ))
         } else if c.violating > 0 {

@@ -50,7 +50,8 @@ pub struct ContactInfo {
     pub converged: bool,
     /// Relative displacement change of the last iteration.
     pub residual: f64,
-    /// Ended at `max_iterations` with states still changing.
+    /// Ended at `max_iterations` without settling (states changing, or
+    /// with slip the displacement still moving).
     pub capped: bool,
     /// Points frozen for cycling.
     pub cycling: usize,

@@ -64,6 +64,8 @@ pub struct Figure {
     pub notes: Vec<Note>,
     /// y values the axis range always includes.
     pub include_y: Vec<f64>,
+    /// x counts something (growth steps): ticks at whole numbers only.
+    pub x_whole: bool,
 }
 
 /// Smallest tick step of `kind` that is at least `min_step`.
@@ -183,7 +185,10 @@ impl Figure {
              <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n\
              <rect x=\"{left}\" y=\"{top}\" width=\"{pw}\" height=\"{ph}\" fill=\"none\" stroke=\"#444\"/>\n"
         );
-        let x_step = tick_step(YTicks::Decimal, (x1 - x0) / 8.0);
+        let mut x_step = tick_step(YTicks::Decimal, (x1 - x0) / 8.0);
+        if self.x_whole {
+            x_step = x_step.max(1.0);
+        }
         for x in ticks(x0, x1, x_step) {
             let _ = writeln!(
                 svg,

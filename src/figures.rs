@@ -124,6 +124,7 @@ fn sifs(view: &SolutionView) -> Option<Figure> {
         id: "sifs".to_owned(),
         x_label: "growth step [–]".to_owned(),
         y_label: "K [MPa·√m]".to_owned(),
+        x_whole: true,
         series: step_series(series, |(c, t, k)| {
             let mode = if k == 1 { "I" } else { "II" };
             format!("K_{mode} crack {} end {}", c + 1, t + 1)
@@ -144,6 +145,7 @@ fn angles(view: &SolutionView) -> Option<Figure> {
         id: "angles".to_owned(),
         x_label: "growth step [–]".to_owned(),
         y_label: "kink angle θ [°]".to_owned(),
+        x_whole: true,
         y_ticks: YTicks::Degrees,
         series: step_series(series, |(c, t, _)| format!("crack {} end {}", c + 1, t + 1)),
         include_y: vec![0.0],

@@ -77,11 +77,12 @@ fn empty_hint(tab: PlotTab) -> &'static str {
 }
 
 /// Tick steps for egui_plot: the figure's kind of step, sized so that
-/// labelled ticks are at least [`LABEL_SPACING`] apart.
-fn spacer(kind: YTicks) -> impl Fn(GridInput) -> Vec<egui_plot::GridMark> {
+/// labelled ticks are at least [`LABEL_SPACING`] apart (and at least
+/// `min_step`: 1 on an axis that counts).
+fn spacer(kind: YTicks, min_step: f64) -> impl Fn(GridInput) -> Vec<egui_plot::GridMark> {
     egui_plot::uniform_grid_spacer(move |input: GridInput| {
         let per_px = input.base_step_size / f64::from(GRID_MIN);
-        let step = tick_step(kind, per_px * LABEL_SPACING);
+        let step = tick_step(kind, per_px * LABEL_SPACING).max(min_step);
         match kind {
             YTicks::Degrees => [step / 3.0, step, 2.0 * step],
             YTicks::Log => [step, step, 10.0 * step],
@@ -116,14 +117,22 @@ fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut V
     });
     let height = ui.available_height().max(MIN_PLOT_HEIGHT);
     let kind = fig.y_ticks;
+    let x_min_step = if fig.x_whole { 1.0 } else { 0.0 };
     let mut plot = Plot::new(&fig.id)
         .x_axis_label(&fig.x_label)
         .y_axis_label(&fig.y_label)
         .y_axis_min_width(Y_AXIS_WIDTH)
         .height(height)
         .grid_spacing(GRID_MIN..=300.0)
-        .x_grid_spacer(spacer(YTicks::Decimal))
-        .y_grid_spacer(spacer(kind))
+        .x_grid_spacer(spacer(YTicks::Decimal, x_min_step))
+        .y_grid_spacer(spacer(kind, 0.0))
+        .x_axis_formatter(move |m, _| {
+            if m.step_size < x_min_step {
+                String::new()
+            } else {
+                tick_label(YTicks::Decimal, m.value, m.step_size)
+            }
+        })
         .y_axis_formatter(move |m, _| tick_label(kind, m.value, m.step_size));
     for y in &fig.include_y {
         plot = plot.include_y(*y);

@@ -108,7 +108,6 @@ pub struct InSweep {
     /// States, status and the relative residual after each sweep (sweep 0:
     /// the start), with times from the start.
     reached: Reached,
-    tracker: FlipTracker,
     /// Boxed: the cells and operator are large, the rest is small.
     setup: Option<Box<Setup>>,
     sweeps: usize,
@@ -124,12 +123,10 @@ impl InSweep {
     /// the states `initial` (the slip history is the `committed` states
     /// passed to [`run`](Self::run)).
     pub fn new(load: Vec<f64>, initial: Vec<FaceState>, params: InSweepParams) -> Self {
-        let n = initial.len();
         Self {
             params,
             load,
             reached: Reached::new(initial),
-            tracker: FlipTracker::new(n),
             setup: None,
             sweeps: 0,
             residual: f64::INFINITY,
@@ -289,7 +286,7 @@ impl InSweep {
                     committed[p].slip,
                     u,
                     &mut self.reached.states[p],
-                    &mut self.tracker,
+                    &mut self.reached.tracker,
                     counted,
                 )?);
             }
@@ -319,7 +316,7 @@ impl InSweep {
             s.since_refresh = 0;
             residual = relative(norm(&s.r), norm_load);
             let (consistent, violating) =
-                final_check(x, committed, u, &self.reached.states, &self.tracker);
+                final_check(x, committed, u, &self.reached.states, &self.reached.tracker);
             self.reached.info.violating = violating;
             passed = residual <= a.tolerance && consistent;
             if passed && change <= self.params.contact.tolerance {
@@ -333,7 +330,7 @@ impl InSweep {
         self.reached.info.iterations = self.sweeps;
         self.reached.info.linear_iterations = self.sweeps;
         self.reached.info.residual = change;
-        self.reached.info.cycling = self.tracker.frozen();
+        self.reached.info.cycling = self.reached.tracker.frozen();
         self.reached.info.last = LinearInfo {
             iterations: self.sweeps,
             residual,

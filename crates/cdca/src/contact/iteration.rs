@@ -87,7 +87,6 @@ pub struct ContactSolve {
     /// iterations, then those of the current one, with cumulative
     /// iterations and times).
     reached: Reached,
-    tracker: FlipTracker,
     /// The current contact iteration's system, once assembled.
     system: Option<System>,
     /// Displacement at the start of the current contact iteration.
@@ -99,7 +98,8 @@ pub struct ContactSolve {
 /// Where a contact iteration stands, the outer loop's ([`ContactSolve`])
 /// or the in-sweep rule's
 /// ([`InSweep`](crate::contact::in_sweep::InSweep)): the contact states,
-/// how it went, whether it ended, and the residual samples so far.
+/// how it went, whether it ended, the residual samples so far, and the
+/// flip counts of the stick–slip cycling guard.
 #[derive(Clone, Debug, Default)]
 pub struct Reached {
     /// The states as they are now (the result once finished).
@@ -109,12 +109,15 @@ pub struct Reached {
     pub finished: bool,
     /// Relative residual samples, iterations and times from the start.
     pub history: Vec<ResidualSample>,
+    /// How often each point changed state, and which are frozen.
+    pub tracker: FlipTracker,
 }
 
 impl Reached {
     /// The start: the states `initial`, nothing done.
     pub fn new(initial: Vec<FaceState>) -> Self {
         Self {
+            tracker: FlipTracker::new(initial.len()),
             states: initial,
             ..Self::default()
         }
@@ -145,12 +148,10 @@ impl ContactSolve {
     /// slipping; the slip history is the `committed` states passed to
     /// [`advance`](Self::advance)).
     pub fn new(load: Vec<f64>, initial: Vec<FaceState>, params: ContactParams) -> Self {
-        let n = initial.len();
         Self {
             params,
             load,
             reached: Reached::new(initial),
-            tracker: FlipTracker::new(n),
             system: None,
             before: Vec::new(),
             done_iterations: 0,
@@ -240,13 +241,13 @@ impl ContactSolve {
             u,
             committed,
             &mut self.reached.states,
-            &mut self.tracker,
+            &mut self.reached.tracker,
             self.params,
         );
         self.reached.info.iterations = it;
         self.reached.info.residual = relative_change(u, &self.before);
         self.reached.info.violating = update.violating;
-        self.reached.info.cycling = self.tracker.frozen();
+        self.reached.info.cycling = self.reached.tracker.frozen();
         if !self.reached.info.residual.is_finite() {
             return Err(SolveError::NonFinite {
                 place: format!("contact iteration {it}"),

@@ -33,6 +33,11 @@ pub struct Resume {
     /// 1 stick, 2 slip; gaps in m, tractions in Pa.
     #[serde(default)]
     pub faces: Vec<[f64; 6]>,
+    /// Per crack, the segments grown at its first and at its last point
+    /// (the default sampling reads the computed field at a closed tip of a
+    /// grown segment, so a reopened scene must know which tips grew).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub grown: Vec<[usize; 2]>,
 }
 
 fn first_increment() -> usize {

@@ -244,6 +244,7 @@ impl Simulation {
             increment: self.state.increment,
             growths_here: self.state.growths_here,
             faces: self.state.faces.iter().map(FaceState::saved).collect(),
+            grown: self.state.cracks.iter().map(|c| c.grown).collect(),
         }
     }
 

@@ -47,6 +47,11 @@ pub(super) struct Previous<'a> {
     /// Elements farther than this from every moved tip may be reused (the
     /// largest enrichment radius plus two elements), m.
     pub far: f64,
+    /// Per crack (new numbering): its tip kinds changed (a tip met another
+    /// crack or the boundary), or it is new. Its Heaviside function then
+    /// changes far from any moved tip (a junction function is cut by the
+    /// main crack), so no element it enriches is reused.
+    pub changed: &'a [bool],
 }
 
 /// The enriched elements of a discretisation.
@@ -159,6 +164,12 @@ fn reusable<'a>(
 ) -> Option<&'a EnrichedElement> {
     let slot = *p.slot.get(e)?;
     if slot == REGULAR {
+        return None;
+    }
+    let changed = |e: &Enrichment| match *e {
+        Enrichment::Heaviside { crack } | Enrichment::Tip { crack, .. } => p.changed[crack],
+    };
+    if enrs.iter().any(changed) {
         return None;
     }
     let old = &p.enriched[slot as usize];

@@ -26,7 +26,7 @@ use crate::discretisation::xfem::element::{
 };
 use crate::discretisation::xfem::faces::build_faces;
 use crate::error::SolveError;
-use crate::geometry::cracks::Crack;
+use crate::geometry::cracks::{Crack, TipKind};
 use crate::geometry::mesh::Mesh;
 use crate::geometry::plane::P2;
 
@@ -117,11 +117,15 @@ impl Xfem {
                 .fold(0.0, f64::max)
                 + 2.0 * x.mesh.h()
         });
+        let changed = reuse.map_or_else(Vec::new, |r| {
+            changed_functions(&r.previous.funcs.cracks, &x.funcs.cracks)
+        });
         let previous = reuse.map(|r| Previous {
             slot: &r.previous.slot,
             enriched: &r.previous.enriched,
             moved: &r.moved,
             far,
+            changed: &changed,
         });
         let elements = build_elements(&x.mesh, &x.funcs, &x.dofs, &segs, &tips, previous.as_ref());
         x.slot = elements.slot;
@@ -279,4 +283,21 @@ impl Xfem {
     pub fn n_free(&self) -> usize {
         self.dofs.n_free
     }
+}
+
+/// Per crack of `new`: whether its enrichment functions may differ from
+/// those of `old` away from its moved tips: it is new, its tip kinds
+/// changed, or one of its tips is a junction on a crack whose polyline
+/// changed (the junction function follows the main crack's level set).
+fn changed_functions(old: &[Crack], new: &[Crack]) -> Vec<bool> {
+    let moved = |m: usize| old.get(m).is_none_or(|o| o.points != new[m].points);
+    new.iter()
+        .enumerate()
+        .map(|(i, c)| {
+            old.get(i).is_none_or(|o| o.tips != c.tips)
+                || c.tips
+                    .iter()
+                    .any(|t| matches!(*t, TipKind::Junction { main } if moved(main)))
+        })
+        .collect()
 }

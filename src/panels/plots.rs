@@ -123,6 +123,8 @@ fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut V
         .y_axis_label(&fig.y_label)
         .y_axis_min_width(Y_AXIS_WIDTH)
         .height(height)
+        // room around the data, so points at the extremes are whole
+        .set_margin_fraction(Vec2::new(0.03, 0.08))
         .grid_spacing(GRID_MIN..=300.0)
         .x_grid_spacer(spacer(YTicks::Decimal, x_min_step))
         .y_grid_spacer(spacer(kind, 0.0))

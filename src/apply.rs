@@ -84,15 +84,12 @@ impl WorkbenchApp {
             Command::SetAccelerateGrowth(on) => self.runner.set_accelerate_growth(on),
             Command::RunStudy(setup) => {
                 self.runner.pause();
-                let base = cdca::Scene::try_from(self.scene.clone()).map_err(|e| e.to_string());
-                match base.and_then(|base| {
-                    Study::new(
-                        &base,
-                        &setup.path,
-                        setup.values(),
-                        self.runner.accelerate_growth(),
-                    )
-                }) {
+                let accelerate = self.runner.accelerate_growth();
+                let study = self
+                    .runner
+                    .checked()
+                    .and_then(|base| Study::new(base, &setup.path, setup.values(), accelerate));
+                match study {
                     Ok(study) => self.study = Some(study),
                     Err(e) => {
                         self.message = Some(Message::Error(format!("The study cannot run: {e}")));
@@ -112,8 +109,8 @@ impl WorkbenchApp {
             }
             Command::CompareSolvers { time_cap } => {
                 self.runner.pause();
-                match cdca::Scene::try_from(self.scene.clone()) {
-                    Ok(scene) => self.race = Some(Race::new(&scene, time_cap)),
+                match self.runner.checked() {
+                    Ok(scene) => self.race = Some(Race::new(scene, time_cap)),
                     Err(e) => {
                         let e = format!("The race cannot run: {e}");
                         self.message = Some(Message::Error(e));

@@ -138,35 +138,15 @@ impl Figure {
         out
     }
 
-    /// Data range `(x_lo, x_hi, y_lo, y_hi)`, padded when flat.
+    /// Data range `(x_lo, x_hi, y_lo, y_hi)`, padded.
     fn bounds(&self) -> (f64, f64, f64, f64) {
-        let xs = self
-            .series
-            .iter()
-            .flat_map(|s| s.points.iter().map(|p| p[0]))
-            .chain(self.vlines.iter().map(|v| v.1));
-        let ys = self
-            .series
-            .iter()
-            .flat_map(|s| s.points.iter().map(|p| p[1]))
-            .chain(self.include_y.iter().copied());
-        let range = |it: &mut dyn Iterator<Item = f64>| {
-            let (lo, hi) = it
-                .filter(|v| v.is_finite())
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-                    (a.min(v), b.max(v))
-                });
-            if lo > hi {
-                (0.0, 1.0)
-            } else if hi - lo < 1e-12 * hi.abs().max(1.0) {
-                (lo - 0.5 * lo.abs().max(1.0), hi + 0.5 * hi.abs().max(1.0))
-            } else {
-                let pad = 0.05 * (hi - lo);
-                (lo - pad, hi + pad)
-            }
-        };
-        let (x0, x1) = range(&mut { xs });
-        let (y0, y1) = range(&mut { ys });
+        let points = || self.series.iter().flat_map(|s| &s.points);
+        let (x0, x1) = padded_range(
+            points()
+                .map(|p| p[0])
+                .chain(self.vlines.iter().map(|v| v.1)),
+        );
+        let (y0, y1) = padded_range(points().map(|p| p[1]).chain(self.include_y.iter().copied()));
         (x0, x1, y0, y1)
     }
 
@@ -227,13 +207,14 @@ impl Figure {
         );
         for s in &self.series {
             let c = hex(s.colour);
-            let path: Vec<String> = s
+            let at: Vec<(f64, f64)> = s
                 .points
                 .iter()
                 .filter(|p| p[1].is_finite())
-                .map(|p| format!("{:.1},{:.1}", sx(p[0]), sy(p[1])))
+                .map(|p| (sx(p[0]), sy(p[1])))
                 .collect();
-            if s.style != Style::Markers && path.len() > 1 {
+            if s.style != Style::Markers && at.len() > 1 {
+                let path: Vec<String> = at.iter().map(|(x, y)| format!("{x:.1},{y:.1}")).collect();
                 let dash = if s.style == Style::Dashed {
                     " stroke-dasharray=\"6 4\""
                 } else {
@@ -246,9 +227,11 @@ impl Figure {
                 );
             }
             if matches!(s.style, Style::Markers | Style::LineAndMarkers) {
-                for p in &path {
-                    let (x, y) = p.split_once(',').unwrap_or(("0", "0"));
-                    let _ = writeln!(svg, "<circle cx=\"{x}\" cy=\"{y}\" r=\"3\" fill=\"{c}\"/>");
+                for (x, y) in &at {
+                    let _ = writeln!(
+                        svg,
+                        "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"3\" fill=\"{c}\"/>"
+                    );
                 }
             }
         }
@@ -292,6 +275,24 @@ impl Figure {
         }
         svg.push_str("</svg>\n");
         svg
+    }
+}
+
+/// The finite values' range with 5% room each side (a flat or empty range
+/// gets a unit-sized one).
+fn padded_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
+    if lo > hi {
+        (0.0, 1.0)
+    } else if hi - lo < 1e-12 * hi.abs().max(1.0) {
+        (lo - 0.5 * lo.abs().max(1.0), hi + 0.5 * hi.abs().max(1.0))
+    } else {
+        let pad = 0.05 * (hi - lo);
+        (lo - pad, hi + pad)
     }
 }
 

@@ -44,8 +44,8 @@ pub fn growth_solver(spec: &cdca::scene::SolverSpec, accelerate: bool) -> cdca::
 /// so bools.)
 #[allow(clippy::struct_excessive_bools)]
 pub struct Runner {
-    /// The edited scene, checked (None while it is invalid).
-    checked: Option<Scene>,
+    /// The edited scene, checked, or why it is invalid.
+    checked: Result<Scene, String>,
     sim: Option<Simulation>,
     /// The run in progress (None: paused).
     run: Option<Run>,
@@ -78,7 +78,7 @@ pub struct Runner {
 impl Default for Runner {
     fn default() -> Self {
         Self {
-            checked: None,
+            checked: Err("no scene yet".to_owned()),
             sim: None,
             run: None,
             relaxation_started: false,
@@ -186,7 +186,6 @@ impl Runner {
     /// (cheap; `Scene::try_from`); the discretisation is built when solver
     /// work is asked for.
     pub fn invalidate(&mut self, scene: &SceneFile) -> Result<(), String> {
-        self.checked = None;
         self.sim = None;
         self.run = None;
         self.relaxation_started = false;
@@ -194,16 +193,20 @@ impl Runner {
         self.view.clear();
         self.field.clear();
         self.stale = true;
-        self.checked = Some(Scene::try_from(scene.clone()).map_err(|e| e.to_string())?);
-        Ok(())
+        self.checked = Scene::try_from(scene.clone()).map_err(|e| e.to_string());
+        self.checked.as_ref().map(|_| ()).map_err(Clone::clone)
+    }
+
+    /// The edited scene as last checked by [`invalidate`](Self::invalidate),
+    /// or why it is invalid.
+    pub fn checked(&self) -> Result<&Scene, String> {
+        self.checked.as_ref().map_err(Clone::clone)
     }
 
     /// Builds a simulation of `scene` (checked; nothing solved yet).
     pub fn rebuild(&mut self, scene: &SceneFile) -> Result<(), String> {
         self.invalidate(scene)?;
-        let Some(valid) = self.checked.clone() else {
-            unreachable!("invalidate keeps the checked scene or fails")
-        };
+        let valid = self.checked()?.clone();
         let start = Instant::now();
         let sim = Simulation::new(valid).map_err(|e| e.to_string())?;
         self.last_build_seconds = start.elapsed().as_secs_f64();

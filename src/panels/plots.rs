@@ -139,9 +139,20 @@ fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut V
     for y in &fig.include_y {
         plot = plot.include_y(*y);
     }
+    // one copy per series, borrowed by its line and its markers
+    let points: Vec<Vec<PlotPoint>> = fig
+        .series
+        .iter()
+        .map(|s| {
+            s.points
+                .iter()
+                .map(|p| PlotPoint::new(p[0], p[1]))
+                .collect()
+        })
+        .collect();
     plot.show(ui, |plot| {
-        for s in &fig.series {
-            let pts = || PlotPoints::from(s.points.clone());
+        for (s, points) in fig.series.iter().zip(&points) {
+            let pts = || PlotPoints::Borrowed(points);
             match s.style {
                 Style::Line => plot.line(Line::new(&s.name, pts()).color(s.colour)),
                 Style::Dashed => plot.line(

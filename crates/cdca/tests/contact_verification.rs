@@ -363,3 +363,78 @@ fn relaxation_does_not_depend_on_the_slice_size() {
         }
     }
 }
+
+/// Converged means a fixed point (default contact, `k_N = 100 E/h`): the
+/// kinked crack of the 3.9 mm 35° μ = 0.6 flaw after its growth run (tension
+/// wings on both ends), solved under −100 MPa. The iteration must end
+/// converged, and one more solve of the system of its final states must
+/// move `u` by at most the tolerance (1e-8 relative) and change no state
+/// but those of points frozen for cycling.
+/// Before the test was taken on the undamped step, this problem was
+/// declared converged after 36 iterations on a step cut to β ≈ 1.5e-5
+/// while that solve still moved `u` by 3.9e-4.
+#[test]
+fn converged_contact_is_a_fixed_point() {
+    use cdca::contact::iteration::{
+        ContactParams, relative_change, solve_with_contact, solve_with_contact_from,
+    };
+    use cdca::contact::law::FaceState;
+    use cdca::discretisation::model::Model;
+    use cdca::scene::Scene;
+    use cdca::solvers::linear::DirectSolver;
+
+    let scene = Scene::from_json(
+        r#"{"specimen":{"width":0.03,"height":0.03,"thickness":0.015},"mesh":{"nx":60,"ny":60},
+        "material":{"young":4.78e9,"poisson":0.25,"plane":"stress"},
+        "cracks":[{"friction":0.6,"points":[[0.013422997823968622,0.007952845776435466],
+          [0.013056893294392255,0.009407482319845423],[0.012689086498414534,0.010861689375540245],
+          [0.013407102881642185,0.012178675508123533],[0.014132653513636467,0.01349152594911546],
+          [0.017327346486363533,0.01572847405088454],[0.01804686296978976,0.01704464122494639],
+          [0.01883531958064606,0.018320703987038053],[0.018480235065011483,0.019778069756759765],
+          [0.018225088699127114,0.02125621059307273]]}],
+        "boundary":{"bottom":{"kind":"roller"},"left":{"kind":"free"},"right":{"kind":"free"},
+          "top":{"kind":"traction","normal":-100e6,"shear":0.0},
+          "points":[{"at":[0.0,0.0],"fix":"x"}]}}"#,
+    )
+    .expect("scene");
+    let model = Model::new(scene.clone());
+    let x = model.discretise(model.initial_cracks());
+    let f = cdca::discretisation::loads::traction_forces(&x, &scene.boundary);
+    let committed = vec![FaceState::default(); x.faces.len()];
+    let mut u = vec![0.0; x.n_free()];
+    let params = ContactParams::default();
+    let mut solver = DirectSolver::default();
+    let (states, info) =
+        solve_with_contact(&x, &f, &committed, &mut u, &mut solver, params).expect("solve");
+    assert!(info.converged, "{info:?}");
+    assert_eq!(info.violating, 0, "{info:?}");
+    let mut again = u.clone();
+    let one = ContactParams {
+        max_iterations: 1,
+        ..params
+    };
+    let (states_again, _) = solve_with_contact_from(
+        &x,
+        &f,
+        &committed,
+        states.clone(),
+        &mut None,
+        &mut again,
+        &mut DirectSolver::default(),
+        one,
+    )
+    .expect("one more solve");
+    let moved = relative_change(&again, &u);
+    assert!(
+        moved <= params.tolerance,
+        "one more solve moved u by {moved:e}"
+    );
+    // only points frozen for cycling (kept within the law's tolerance)
+    // may take another state from the return mapping
+    let changed = states
+        .iter()
+        .zip(&states_again)
+        .filter(|(a, b)| a.state != b.state)
+        .count();
+    assert!(changed <= info.cycling, "{changed} states changed");
+}

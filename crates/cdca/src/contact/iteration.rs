@@ -5,8 +5,11 @@
 //! their latest state and counted, so the loop always ends with an explicit
 //! status. Resumable ([`ContactSolve`]); the blocking calls loop over it.
 
+use nalgebra::{DMatrix, DVector};
+
 use crate::contact::law::{ContactState, FaceState, contact_system, gaps, update_point};
 use crate::discretisation::assembly::ElementBlock;
+use crate::discretisation::dofs::FIXED;
 use crate::discretisation::xfem::Xfem;
 use crate::error::SolveError;
 use crate::geometry::cracks::Crack;
@@ -79,6 +82,24 @@ pub struct ContactInfo {
 /// return mapping ([`update_states`]); repeat until no state changed and
 /// (with slip points) `‖Δu‖ ≤ tolerance ‖u‖` ([`settled`]), at most
 /// `max_iterations` times.
+///
+/// The next iterate is not always the solution `g` of the last system
+/// (with the default penalty `k_N = 100 E/h` the lagged friction let a
+/// whole flaw slide back and forth and slam its wings shut):
+/// - when some point's state (or slip direction) changed, the step from
+///   the iterate `u₀` is damped, `u ← u₀ + β (g − u₀)` with `β ∈ (0, 1]`
+///   where the residual of the contact law (the return mapping along the
+///   step) has no component along it; a step cut below
+///   [`STALLED_STEP`] is taken whole instead, since the same states would
+///   give the same step again;
+/// - when no state changed, the map `u₀ ↦ g` is affine (the same matrix,
+///   friction linear in the gaps), and the next iterate is the Anderson
+///   mix of the last [`ANDERSON_DEPTH`] pairs, if it keeps every state.
+///
+/// Frozen points that break the law once the rest has settled are
+/// released. The operator is unchanged (symmetric positive definite), and
+/// the tests are taken on `g`, the solution of the last system: the
+/// iteration ends converged only with `u = g`.
 pub struct ContactSolve {
     params: ContactParams,
     /// The load `λ f_ext` (without contact forces).
@@ -93,6 +114,76 @@ pub struct ContactSolve {
     before: Vec<f64>,
     done_iterations: usize,
     done_seconds: f64,
+    /// `K u − λ f_ext` (bulk only) at the current iterate, once a linear
+    /// solve has given it.
+    bulk_residual: Option<Vec<f64>>,
+    /// The pairs `(u₀, g)` since the states last changed.
+    anderson: Anderson,
+}
+
+/// Pairs kept for the Anderson mix (measured on the issue-17 growth
+/// runs and 139 contact problems from them: 3 and 10 converged as many).
+pub const ANDERSON_DEPTH: usize = 5;
+
+/// A line-search step below this fraction is taken whole (the same
+/// states would give the same step again: a stall).
+pub const STALLED_STEP: f64 = 0.01;
+
+/// Each point's state and, when it slips, the direction of its friction:
+/// the iteration's map `u₀ ↦ g` is affine while this is unchanged.
+fn signature(states: &[FaceState]) -> Vec<(ContactState, bool)> {
+    states
+        .iter()
+        .map(|s| (s.state, s.state == ContactState::Slip && s.p_t > 0.0))
+        .collect()
+}
+
+/// Anderson mixing of the fixed-point map `u₀ ↦ g` (the solution of the
+/// system of `u₀`'s states), with `r`, the bulk residual `K u − λ f_ext`,
+/// mixed alike (it is affine in `u`).
+#[derive(Default)]
+struct Anderson {
+    /// `(u₀, g, r(g))`, oldest first.
+    pairs: Vec<(Vec<f64>, Vec<f64>, Vec<f64>)>,
+}
+
+impl Anderson {
+    fn clear(&mut self) {
+        self.pairs.clear();
+    }
+
+    /// Adds `(u₀, g, r(g))`; returns the mixed iterate and its residual
+    /// once there are two pairs: `g − Σ γ_j Δg_j` with `γ` minimising
+    /// `‖(g − u₀) − Σ γ_j Δ(g − u₀)_j‖`.
+    fn push(&mut self, u0: &[f64], g: &[f64], r: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
+        self.pairs.push((u0.to_vec(), g.to_vec(), r.to_vec()));
+        if self.pairs.len() > ANDERSON_DEPTH + 1 {
+            self.pairs.remove(0);
+        }
+        let k = self.pairs.len();
+        if k < 2 {
+            return None;
+        }
+        let f = |j: usize, i: usize| self.pairs[j].1[i] - self.pairs[j].0[i];
+        let df = DMatrix::from_fn(g.len(), k - 1, |i, j| f(j + 1, i) - f(j, i));
+        let fk = DVector::from_fn(g.len(), |i, _| f(k - 1, i));
+        let svd = df.svd(true, true);
+        let largest = svd.singular_values.max();
+        if largest <= 0.0 {
+            return None;
+        }
+        let gamma = svd.solve(&fk, 1e-12 * largest).ok()?;
+        let (mut u, mut res) = (g.to_vec(), r.to_vec());
+        for (j, w) in self.pairs.windows(2).enumerate() {
+            for (v, (a, b)) in u.iter_mut().zip(w[1].1.iter().zip(&w[0].1)) {
+                *v -= gamma[j] * (a - b);
+            }
+            for (v, (a, b)) in res.iter_mut().zip(w[1].2.iter().zip(&w[0].2)) {
+                *v -= gamma[j] * (a - b);
+            }
+        }
+        u.iter().all(|v| v.is_finite()).then_some((u, res))
+    }
 }
 
 /// Where a contact iteration stands, the outer loop's ([`ContactSolve`])
@@ -138,8 +229,12 @@ impl Reached {
 /// The linear system of one contact iteration.
 struct System {
     blocks: Vec<ElementBlock>,
+    /// The contact forces on the right-hand side.
+    force: Vec<f64>,
     /// Samples of this solve already copied to the history.
     copied: usize,
+    /// The [`signature`] of the states it was built with.
+    signature: Vec<(ContactState, bool)>,
 }
 
 impl ContactSolve {
@@ -156,6 +251,8 @@ impl ContactSolve {
             before: Vec::new(),
             done_iterations: 0,
             done_seconds: 0.0,
+            bulk_residual: None,
+            anderson: Anderson::default(),
         }
     }
 
@@ -199,7 +296,15 @@ impl ContactSolve {
             self.before.clone_from(u);
             solver.start(x, &blocks, &f, u, matrix_changed)?;
             *factored = Some(kinds);
-            self.system = Some(System { blocks, copied: 0 });
+            for (a, b) in f.iter_mut().zip(&self.load) {
+                *a -= b;
+            }
+            self.system = Some(System {
+                blocks,
+                force: f,
+                copied: 0,
+                signature: signature(&self.reached.states),
+            });
             return self.advance(x, committed, factored, u, solver, max_iterations);
         };
         let status = solver.run(x, &system.blocks, max_iterations.max(1))?;
@@ -234,18 +339,63 @@ impl ContactSolve {
         self.reached.info.linear_iterations += lin.iterations;
         let linear_converged = lin.converged;
         self.reached.info.last = lin;
-        self.system = None;
         let it = self.reached.info.iterations + 1;
-        let update = update_states(
-            x,
-            u,
-            committed,
-            &mut self.reached.states,
-            &mut self.reached.tracker,
-            self.params,
-        );
+        let Some(system) = self.system.take() else {
+            return Ok(self.status(self.reached.finished));
+        };
+        // the tests are taken on g = u, the solution of the system
+        let solved = bulk_residual(x, &system, u);
+        let change = relative_change(u, &self.before);
+        let mut states = self.reached.states.clone();
+        let mut tracker = self.reached.tracker.clone();
+        let update = update_states(x, u, committed, &mut states, &mut tracker, self.params);
+        let settled = settled(&update, &states, change, self.params);
+        let next = if settled || !linear_converged || it >= self.params.max_contact_iterations() {
+            self.anderson.clear();
+            None
+        } else if update.changed == 0 && signature(&states) == system.signature {
+            let mixed = self
+                .anderson
+                .push(&self.before, u, &solved)
+                .filter(|(m, _)| {
+                    let (mut st, mut tr) = (states.clone(), tracker.clone());
+                    update_states(x, m, committed, &mut st, &mut tr, self.params);
+                    signature(&st) == system.signature
+                });
+            if mixed.is_none() {
+                self.anderson.clear();
+            }
+            mixed
+        } else {
+            self.anderson.clear();
+            self.bulk_residual.as_ref().and_then(|r0| {
+                let beta = line_search(x, committed, &self.before, u, r0, &solved);
+                (STALLED_STEP..1.0).contains(&beta).then(|| {
+                    let step = |a: &[f64], b: &[f64]| -> Vec<f64> {
+                        a.iter().zip(b).map(|(p, q)| p + beta * (q - p)).collect()
+                    };
+                    (step(&self.before, u), step(r0, &solved))
+                })
+            })
+        };
+        if let Some((v, r)) = next {
+            *u = v;
+            self.bulk_residual = Some(r);
+            update_states(
+                x,
+                u,
+                committed,
+                &mut self.reached.states,
+                &mut self.reached.tracker,
+                self.params,
+            );
+        } else {
+            self.bulk_residual = Some(solved);
+            self.reached.states = states;
+            self.reached.tracker = tracker;
+        }
         self.reached.info.iterations = it;
-        self.reached.info.residual = relative_change(u, &self.before);
+        self.reached.info.residual = change;
         self.reached.info.violating = update.violating;
         self.reached.info.cycling = self.reached.tracker.frozen();
         if !self.reached.info.residual.is_finite() {
@@ -257,14 +407,20 @@ impl ContactSolve {
         // from it mean little, and the status says so
         if !linear_converged {
             self.reached.finished = true;
-        } else if settled(
-            &update,
-            &self.reached.states,
-            self.reached.info.residual,
-            self.params,
-        ) {
-            self.reached.info.converged = update.violating == 0;
-            self.reached.finished = true;
+        } else if settled {
+            if update.violating > 0 && it < self.params.max_contact_iterations() {
+                thaw(
+                    x,
+                    u,
+                    committed,
+                    &mut self.reached.states,
+                    &mut self.reached.tracker,
+                );
+                self.reached.info.cycling = self.reached.tracker.frozen();
+            } else {
+                self.reached.info.converged = update.violating == 0;
+                self.reached.finished = true;
+            }
         } else if it >= self.params.max_contact_iterations() {
             self.reached.info.capped = true;
             self.reached.finished = true;
@@ -291,6 +447,94 @@ impl ContactSolve {
     pub fn into_reached(self) -> Reached {
         self.reached
     }
+}
+
+/// `K u − λ f_ext` at the solution `u` of `system`: its contact forces
+/// minus its contact stiffness times `u`.
+fn bulk_residual(x: &Xfem, system: &System, u: &[f64]) -> Vec<f64> {
+    let mut r = system.force.clone();
+    for b in &system.blocks {
+        let dofs = &x.enriched[b.slot].dofs;
+        for (a, &da) in dofs.iter().enumerate() {
+            if da == FIXED {
+                continue;
+            }
+            let mut s = 0.0;
+            for (c, &dc) in dofs.iter().enumerate() {
+                if dc != FIXED {
+                    s += b.k[(a, c)] * u[dc as usize];
+                }
+            }
+            r[da as usize] -= s;
+        }
+    }
+    r
+}
+
+/// The step `β ∈ (0, 1]` along `d = u − u0` at which the residual of the
+/// contact law (the return mapping at `u0 + β d`) has no component along `d`.
+fn line_search(
+    x: &Xfem,
+    committed: &[FaceState],
+    u0: &[f64],
+    u: &[f64],
+    r0: &[f64],
+    r1: &[f64],
+) -> f64 {
+    // per face point with stiffness: its index, its gaps at u0 and of d
+    struct Pt {
+        i: usize,
+        g0: (f64, f64),
+        gd: (f64, f64),
+    }
+    let d: Vec<f64> = u.iter().zip(u0).map(|(a, b)| a - b).collect();
+    let a: f64 = d.iter().zip(r0).map(|(p, q)| p * q).sum();
+    let b: f64 = d
+        .iter()
+        .zip(r0)
+        .zip(r1)
+        .map(|((p, q0), q1)| p * (q1 - q0))
+        .sum();
+    let pts: Vec<Pt> = x
+        .faces
+        .iter()
+        .enumerate()
+        .filter(|(_, fp)| fp.follows.is_none())
+        .map(|(i, fp)| Pt {
+            i,
+            g0: gaps(x, fp, u0),
+            gd: gaps(x, fp, &d),
+        })
+        .collect();
+    let slope = |beta: f64| -> f64 {
+        let mut s = a + beta * b;
+        for &Pt { i, g0, gd } in &pts {
+            let fp = &x.faces[i];
+            let crack = &x.funcs.cracks[fp.crack];
+            let st = update_point(
+                crack,
+                committed[i].slip,
+                g0.0 + beta * gd.0,
+                g0.1 + beta * gd.1,
+            );
+            s += fp.w * (st.p_n * gd.0 + st.p_t * gd.1);
+        }
+        s
+    };
+    let (s0, s1) = (slope(0.0), slope(1.0));
+    if s1 <= 0.0 || s0 >= 0.0 {
+        return 1.0;
+    }
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..40 {
+        let m = 0.5 * (lo + hi);
+        if slope(m) > 0.0 {
+            hi = m;
+        } else {
+            lo = m;
+        }
+    }
+    hi
 }
 
 /// Solves with contact from the committed states of the last converged
@@ -422,11 +666,7 @@ pub fn update_states(
     tracker: &mut FlipTracker,
     params: ContactParams,
 ) -> StateUpdate {
-    let gaps_all: Vec<(f64, f64)> = x.faces.iter().map(|fp| gaps(x, fp, u)).collect();
-    let mut jump_scale = vec![0.0_f64; x.funcs.cracks.len()];
-    for (fp, &(gn, gt)) in x.faces.iter().zip(&gaps_all) {
-        jump_scale[fp.crack] = jump_scale[fp.crack].max(gn.hypot(gt));
-    }
+    let (gaps_all, jump_scale) = gaps_and_jump_scales(x, u);
     let mut update = StateUpdate::default();
     for i in 0..states.len() {
         let fp = &x.faces[i];
@@ -457,6 +697,51 @@ pub fn update_states(
     }
     update_followers(x, u, states);
     update
+}
+
+/// The gaps `(g_N, g_T)` of every face point at `u`, and per crack its
+/// largest jump `|[[u]]|` (the scale of [`FROZEN_TOLERANCE`]).
+fn gaps_and_jump_scales(x: &Xfem, u: &[f64]) -> (Vec<(f64, f64)>, Vec<f64>) {
+    let gaps_all: Vec<(f64, f64)> = x.faces.iter().map(|fp| gaps(x, fp, u)).collect();
+    let mut jump_scale = vec![0.0_f64; x.funcs.cracks.len()];
+    for (fp, &(gn, gt)) in x.faces.iter().zip(&gaps_all) {
+        jump_scale[fp.crack] = jump_scale[fp.crack].max(gn.hypot(gt));
+    }
+    (gaps_all, jump_scale)
+}
+
+/// Releases the frozen points that break the contact law at `u`: each
+/// takes the return mapping's state and starts its flip count afresh.
+fn thaw(
+    x: &Xfem,
+    u: &[f64],
+    committed: &[FaceState],
+    states: &mut [FaceState],
+    tracker: &mut FlipTracker,
+) {
+    let (gaps_all, jump_scale) = gaps_and_jump_scales(x, u);
+    for i in 0..states.len() {
+        let fp = &x.faces[i];
+        if fp.follows.is_some() || !tracker.frozen[i] {
+            continue;
+        }
+        let crack = &x.funcs.cracks[fp.crack];
+        let (gn, gt) = gaps_all[i];
+        let new = update_point(crack, committed[i].slip, gn, gt);
+        if breaks_law(
+            states[i].state,
+            &new,
+            crack,
+            committed[i].slip,
+            gt,
+            jump_scale[fp.crack],
+        ) {
+            states[i] = new;
+            tracker.frozen[i] = false;
+            tracker.flips[i] = 0;
+        }
+    }
+    update_followers(x, u, states);
 }
 
 /// Whether a frozen point whose kept state is `kept` breaks the contact

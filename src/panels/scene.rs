@@ -354,6 +354,14 @@ fn criterion_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
                     );
                 }
             });
+            if c.r0.is_none() {
+                ui.weak(
+                    "auto r0: the process zone above, or a/5π on a crack of \
+                     half-length a shorter than 5π times it (σ_t then rises so \
+                     that mode I still needs K_IC); the tip inspector shows \
+                     each tip's r0",
+                );
+            }
             if c.kind == CriterionKind::Comprehensive {
                 choice(
                     ui,

@@ -5,8 +5,8 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use cdca::Simulation;
-use cdca::report::{GrowReport, GrowthStepReport, Mode};
+use cdca::report::{GrowReport, GrowthStepReport, Mode, Outcome};
+use cdca::{Simulation, SolveError};
 
 use crate::error::CliError;
 use crate::{output, scene_file};
@@ -24,23 +24,23 @@ pub struct Args {
 pub fn run(args: &Args) -> Result<(), CliError> {
     let scene = scene_file::load(&args.scene)?;
     let mut sim = Simulation::new(scene)?;
-    let outcome = loop {
-        if let Some(outcome) = sim.growth_finished() {
-            break outcome;
-        }
-        sim.grow_step()?;
-    };
-    let report = GrowReport {
-        steps: sim.history().to_vec(),
-        outcome,
-        cracks: sim.cracks(),
-    };
+    let (report, failed) = grow(&mut sim, |sim| sim.grow_step().map(drop));
     if let Some(dir) = &args.csv {
         write_csv(dir, &report)?;
     }
     output::print_json(&report)?;
     // the report is printed either way; growth stopped on an unconverged
-    // solve exits 1
+    // solve exits 1, on an error with that error's code
+    if let Some(e) = failed {
+        let m = format!(
+            "{}; growth stopped",
+            report.error.as_deref().unwrap_or_default()
+        );
+        return Err(match e {
+            SolveError::Scene(_) => CliError::Input(m),
+            _ => CliError::Failure(m),
+        });
+    }
     match report.steps.iter().find(|s| !s.converged) {
         Some(s) => Err(CliError::Failure(format!(
             "step {} did not converge: {}; growth stopped",
@@ -49,6 +49,35 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         ))),
         None => Ok(()),
     }
+}
+
+/// Runs `step` (one growth step) until growth ends, or until a step fails:
+/// then the report holds the steps before it, outcome `error` and the
+/// message naming the step; the error is returned too, for the exit code.
+fn grow(
+    sim: &mut Simulation,
+    mut step: impl FnMut(&mut Simulation) -> Result<(), SolveError>,
+) -> (GrowReport, Option<SolveError>) {
+    let mut failed = None;
+    let outcome = loop {
+        if let Some(outcome) = sim.growth_finished() {
+            break outcome;
+        }
+        if let Err(e) = step(sim) {
+            failed = Some(e);
+            break Outcome::Error;
+        }
+    };
+    // the scene's `growth.resume.steps` counts the steps done, this run's
+    // and any before it
+    let next = sim.scene().growth.resume.as_ref().map_or(0, |r| r.steps) + 1;
+    let report = GrowReport {
+        steps: sim.history().to_vec(),
+        outcome,
+        cracks: sim.cracks(),
+        error: failed.as_ref().map(|e| format!("step {next}: {e}")),
+    };
+    (report, failed)
 }
 
 fn write_csv(dir: &Path, report: &GrowReport) -> Result<(), CliError> {
@@ -133,6 +162,70 @@ mod tests {
              1,0.2,0,1,0.125,0.5,tension,-70.5,1500000,-200000\n\
              1,0.2,1,0,0.125,0.5,shear,-70.5,1500000,-200000\n"
         );
+    }
+
+    /// A step that fails ends growth with the steps before it in the
+    /// report: the first two steps of the bundled single flaw (40 × 40),
+    /// equal to those of an uninterrupted run (time aside), outcome
+    /// `error`, and the message naming step 3; the error is handed back
+    /// for the exit code.
+    #[test]
+    fn a_failing_step_keeps_the_steps_before_it() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../assets/scenes/specimen_single_flaw.json"
+        );
+        let text = std::fs::read_to_string(path).expect("bundled scene");
+        let mut file = cdca::Scene::from_json(&text).expect("valid").into_file();
+        file.mesh.nx = 40;
+        file.mesh.ny = 40;
+        file.growth.max_steps = 3;
+        let scene = cdca::Scene::try_from(file).expect("valid");
+        let untimed = |steps: &[GrowthStepReport]| -> Vec<GrowthStepReport> {
+            steps
+                .iter()
+                .map(|s| GrowthStepReport {
+                    seconds: 0.0,
+                    ..s.clone()
+                })
+                .collect()
+        };
+        let mut sim = Simulation::new(scene.clone()).expect("solvable");
+        let (reference, failed) = grow(&mut sim, |sim| sim.grow_step().map(drop));
+        assert!(failed.is_none() && reference.error.is_none());
+        assert_eq!(
+            (reference.outcome, reference.steps.len()),
+            (Outcome::MaxSteps, 3)
+        );
+
+        let mut sim = Simulation::new(scene).expect("solvable");
+        let (report, failed) = grow(&mut sim, |sim| {
+            if sim.history().len() == 2 {
+                Err(SolveError::NotPositiveDefinite {
+                    dofs: 7,
+                    detail: "NonPositivePivot { index: 6 }".to_owned(),
+                })
+            } else {
+                sim.grow_step().map(drop)
+            }
+        });
+        assert!(matches!(
+            failed,
+            Some(SolveError::NotPositiveDefinite { dofs: 7, .. })
+        ));
+        assert_eq!(report.outcome, Outcome::Error);
+        assert_eq!(untimed(&report.steps), untimed(&reference.steps[..2]));
+        let json = serde_json::to_value(&report).expect("JSON");
+        assert_eq!(json["outcome"], "error");
+        assert_eq!(json["steps"].as_array().map(Vec::len), Some(2));
+        assert_eq!(
+            json["error"],
+            "step 3: stiffness matrix is not positive definite (7 DOFs): \
+             NonPositivePivot { index: 6 }"
+        );
+        // a run that ends normally has no `error` field
+        let json = serde_json::to_value(&reference).expect("JSON");
+        assert!(json.get("error").is_none());
     }
 
     #[test]

@@ -113,6 +113,9 @@ pub struct GrowReport {
     pub outcome: Outcome,
     /// Final crack polylines, m.
     pub cracks: Vec<Vec<[f64; 2]>>,
+    /// With outcome `error`: the step that failed and why.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
 }
 
 /// How a growth run ended.
@@ -127,6 +130,10 @@ pub enum Outcome {
     /// A step's solve (linear or contact) did not converge: growth stopped
     /// rather than go on from an untrusted state.
     NotConverged,
+    /// A step's solve failed with an error (say a singular stiffness):
+    /// growth stopped, the history holds the steps before it and the
+    /// report's `error` says what happened.
+    Error,
 }
 
 /// One solve-evaluate-grow step of SPEC §9.

@@ -1,12 +1,13 @@
 //! Fracture criteria at a free tip (SPEC §8).
 //!
-//! Comprehensive (the paper's): tensile first, `θ0 = argmax σ_θθ(θ, r0)`,
-//! grows in tension if `σ_θθ(θ0) ≥ σ_t`; otherwise shear,
-//! `θ1 = argmax |τ_rθ(θ, r0)|` (θ1 = 0 with the faces' envelope, see
-//! [`CriterionParams::shear_envelope`]), grows if
-//! `|τ_rθ(θ1)| ≥ max(σ_n, 0) μ_s + c_s` with `σ_n = −σ_θθ(θ1)` and the
-//! envelope of [`ShearStrength`]. MTS (Erdogan–Sih) and its T-stress variant are
-//! offered for comparison.
+//! Comprehensive (the paper's), one rule at every free tip: tensile first,
+//! `θ0 = argmax σ_θθ(θ, r0)`, grows in tension if `σ_θθ(θ0) ≥ σ_t`;
+//! otherwise shear on the Mohr–Coulomb critical plane of the circle,
+//! `θ1 = argmax |τ_rθ(θ, r0)| / (max(σ_n(θ), 0) μ_s + c_s)` with
+//! `σ_n = −σ_θθ`, grows if that ratio reaches 1, with the envelope of
+//! [`ShearStrength`]. The radius follows the crack's size
+//! ([`CriterionParams::for_crack`]). MTS (Erdogan–Sih) and its T-stress
+//! variant are offered for comparison.
 
 use std::f64::consts::PI;
 
@@ -53,7 +54,16 @@ pub struct CriterionParams {
     /// K_IIC, Pa·√m.
     pub k_iic: f64,
     pub shear: ShearStrength,
+    /// Whether the scene gives r0 (`criterion.r0`); if not, r0 follows
+    /// the crack's size ([`for_crack`](Self::for_crack)).
+    pub radius_given: bool,
 }
+
+/// Smallest half-length over process-zone size, `a / r_p`, at which a crack
+/// is long enough for linear elastic fracture mechanics: ASTM E399's size
+/// requirement `a ≥ 2.5 (K_IC/σ_t)²` with `r_p = (K_IC/σ_t)² / 2π` is
+/// `a ≥ 5π r_p`.
+pub const LEFM_SIZE_RATIO: f64 = 5.0 * PI;
 
 /// The faces of the crack whose tip is evaluated: friction coefficient μ,
 /// cohesion c_c (Pa), and whether the faces next to the tip are in contact.
@@ -81,6 +91,39 @@ impl CriterionParams {
             k_ic: m.k_ic,
             k_iic: m.k_iic,
             shear: scene.criterion.shear_strength,
+            radius_given: scene.criterion.r0.is_some(),
+        }
+    }
+
+    /// The settings at a tip of a crack of total length `length` (m).
+    ///
+    /// With r0 given by the scene, the scene's settings. Otherwise r0 is
+    /// the process-zone size `r_p` of [`radius_and_strength`] for a crack
+    /// whose half-length `a` is at least [`LEFM_SIZE_RATIO`]` r_p`, and
+    /// `a / LEFM_SIZE_RATIO` for a shorter one, with σ_t raised to
+    /// `σ_t √(r_p / r0)` so that the tensile check in a pure mode-I field
+    /// is still `K_I ≥ K_IC`.
+    ///
+    /// Why: on a flaw only a few r_p long the circle r_p lies outside the
+    /// flaw's K-dominated zone and reads the far field. Under uniaxial
+    /// compression that field's compression cancels the sliding flaw's
+    /// tension at r_p, so a 3.5 mm flaw (a = 1.3 r_p) grew coplanar in
+    /// shear, where experiments and the sliding-crack model (the wing's
+    /// `K_I = (2/√3) K_II`) give tension wings at every flaw size. The
+    /// criterion is a tip criterion only where LEFM holds, so r0 is kept
+    /// inside that zone. The rule depends on the crack's current length
+    /// alone: the same at every tip, drawn or grown, and a saved scene
+    /// carries it.
+    #[must_use]
+    pub fn for_crack(&self, length: f64) -> Self {
+        let limit = 0.5 * length / LEFM_SIZE_RATIO;
+        if self.radius_given || limit >= self.r0 || limit <= 0.0 {
+            return *self;
+        }
+        Self {
+            r0: limit,
+            sigma_t: self.sigma_t * (self.r0 / limit).sqrt(),
+            ..*self
         }
     }
 
@@ -88,23 +131,15 @@ impl CriterionParams {
     /// of a crack with `faces`, or `None` where the branch does not apply:
     /// see [`ShearStrength`].
     ///
-    /// The `Faces` envelope is the crack's own faces extending in shear, so
-    /// it needs those faces in contact next to the tip. At an open tip
-    /// (a tensile wing) the faces carry no friction, and the peak of
-    /// |τ_rθ| off the crack line (±40°) is the bulk's own compression (the
-    /// T-stress), not a shear singularity of the tip. Checked there, it
-    /// made wings under uniaxial compression turn ±40° in shear once the
-    /// load passed about 110 MPa, then turn back ∓90° in tension from the
-    /// closed segment that left, so they zig-zagged instead of running
-    /// parallel to the load.
-    ///
-    /// For the same reason the `Faces` branch is checked at θ1 = 0, the
-    /// faces extending in their own plane, not at the peak of |τ_rθ|: at a
-    /// closed wing inclined to the load that peak is the bulk's deviatoric
-    /// stress at ±40° (|T|/2 ≈ 40 MPa against a singular K_II/√(2πr0) ≈
-    /// 16 MPa), which met the faces' envelope and turned closed wings ±40°
-    /// in shear, then ∓82° back in tension at a tenth of the load (the
-    /// sliding segment's own wing): a three-step saw-tooth.
+    /// The `Faces` envelope is the crack's own faces extending in shear, a
+    /// sliding mechanism: it needs those faces in contact next to the tip.
+    /// At an open tip (a tensile wing) the faces carry no friction and the
+    /// tip's own field is mode I, whose tension comes first (K_IIC > K_IC);
+    /// the peak of |τ_rθ| there is the bulk's compression (the T-stress),
+    /// not the tip. Checked there too, it turned wings under uniaxial
+    /// compression ±40° in shear once the load passed about 110 MPa, then
+    /// back in tension from the closed segment that left: a zig-zag
+    /// instead of wings parallel to the load.
     pub fn shear_envelope(&self, faces: Faces) -> Option<(f64, f64)> {
         match self.shear {
             ShearStrength::Faces if !faces.closed => None,
@@ -331,17 +366,21 @@ pub fn assess(
             let Some((friction, cohesion)) = p.shear_envelope(faces) else {
                 return (out, utilisation);
             };
-            let abs_tau: Vec<f64> = circle.tau_rt.iter().map(|v| v.abs()).collect();
-            // the faces' envelope: their own plane, ahead of the tip (see
-            // `CriterionParams::shear_envelope`)
-            let (t1, tau) = if p.shear == ShearStrength::Faces {
-                (0.0, interpolate(&circle.theta, &abs_tau, 0.0))
-            } else {
-                let Some(peak) = argmax(&circle.theta, &abs_tau) else {
-                    return (out, utilisation);
-                };
-                peak
+            // the Mohr–Coulomb critical plane: the largest demand over
+            // strength on the circle
+            let strength_at = |stt: f64| (-stt).max(0.0) * friction + cohesion;
+            let demand: Vec<f64> = circle
+                .tau_rt
+                .iter()
+                .zip(&circle.sigma_tt)
+                // a plane without strength (no cohesion, σ_n ≤ 0) counts as
+                // 10⁶ times over: finite, for the fit of the peak
+                .map(|(t, s)| ratio(t.abs(), strength_at(*s)).min(1e6))
+                .collect();
+            let Some((t1, _)) = argmax(&circle.theta, &demand) else {
+                return (out, utilisation);
             };
+            let tau = interpolate(&circle.theta, &circle.tau_rt, t1).abs();
             let sigma_n = -interpolate(&circle.theta, &circle.sigma_tt, t1);
             out.angle_deg = t1.to_degrees();
             let strength = sigma_n.max(0.0) * friction + cohesion;
@@ -428,6 +467,7 @@ mod tests {
             k_ic: 1e6,
             k_iic: 2e6,
             shear: ShearStrength::Faces,
+            radius_given: true,
         };
         let s = Sifs {
             k1: 0.0,

@@ -124,7 +124,6 @@ pub fn apply(crack: &mut Crack, k: usize, p: P2) {
     } else {
         crack.points.push(p);
     }
-    crack.grown[k] += 1;
 }
 
 #[cfg(test)]
@@ -140,7 +139,6 @@ mod tests {
             cohesion: 0.0,
             kn: 1.0,
             kt: 1.0,
-            grown: [0; 2],
         }
     }
 

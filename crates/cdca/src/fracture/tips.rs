@@ -59,17 +59,13 @@ pub fn evaluate_tips(
     let mut out = Evaluation::default();
     for (c, k, frame, s) in all_tip_sifs(x, u, &tractions) {
         let crack = &x.funcs.cracks[c];
+        let params = &params.for_crack(crack.length());
         let faces = Faces {
             friction: crack.friction,
             cohesion: crack.cohesion,
             closed: closed_near_tip(x, states, c, &frame),
         };
         let circle = match sampling {
-            Sampling::Hybrid if faces.closed && crack.grown[k] > 0 => {
-                // a closed tip of a grown segment: the computed field (see
-                // `Sampling::Hybrid`)
-                sample_field(&frame, params.r0, &|p| field.stress_averaged_at(p))
-            }
             Sampling::Field => sample_field(&frame, params.r0, &|p| field.stress_averaged_at(p)),
             Sampling::Williams => sample_williams(&s, params.r0),
             Sampling::Hybrid => sample_hybrid(

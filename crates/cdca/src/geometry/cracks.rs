@@ -31,9 +31,6 @@ pub struct Crack {
     pub kn: f64,
     /// Tangential stiffness k_T, Pa/m.
     pub kt: f64,
-    /// Number of segments grown at tip 0 (the polyline's first ones) and
-    /// at tip 1 (its last ones); the rest is the crack the scene gives.
-    pub grown: [usize; 2],
 }
 
 impl Crack {
@@ -54,7 +51,6 @@ impl Crack {
             cohesion: spec.cohesion,
             kn,
             kt,
-            grown: [0; 2],
         }
     }
 
@@ -158,6 +154,45 @@ pub fn classify_tips(cracks: &mut [Crack], width: f64, height: f64, tol: f64) {
     }
 }
 
+/// Whether the cracks cut the specimen apart: a chain of cracks linked at
+/// junctions runs from the boundary back to the boundary, or closes on
+/// itself, so that some piece of the specimen is bounded by cracks (and the
+/// boundary) alone. Such a piece holds together only through its crack
+/// faces; once they open it has a rigid motion, and the stiffness is
+/// singular (the growth history ends `through` there, SPEC §9).
+///
+/// In the graph whose vertices are the cracks and the boundary, and whose
+/// edges are the non-free tips (a boundary tip joins its crack to the
+/// boundary, a junction its crack to the main one), that is a cycle. The
+/// tips must be classified ([`classify_tips`]). Cracks that cross away from
+/// their tips (no junction) are not seen.
+pub fn cut_apart(cracks: &[Crack]) -> bool {
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    // union–find over the cracks and the boundary (index `cracks.len()`)
+    let mut parent: Vec<usize> = (0..=cracks.len()).collect();
+    for (c, crack) in cracks.iter().enumerate() {
+        for tip in crack.tips {
+            let other = match tip {
+                TipKind::Free => continue,
+                TipKind::Boundary => cracks.len(),
+                TipKind::Junction { main } => main,
+            };
+            let (a, b) = (root(&mut parent, c), root(&mut parent, other));
+            if a == b {
+                return true;
+            }
+            parent[a] = b;
+        }
+    }
+    false
+}
+
 /// Reference side of a junction: the sign of `φ_main` on the secondary
 /// crack's own body (at the middle of its segment next to tip `k`).
 pub fn junction_side(secondary: &Crack, k: usize, main: &Crack) -> f64 {
@@ -189,4 +224,48 @@ pub fn first_crossing(crack: &Crack, a: P2, b: P2) -> Option<(f64, P2)> {
         }
     }
     best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn crack(tips: [TipKind; 2]) -> Crack {
+        Crack {
+            points: vec![P2::new(0.0, 0.0), P2::new(1.0, 0.0)],
+            tips,
+            friction: 0.0,
+            cohesion: 0.0,
+            kn: 1.0,
+            kt: 1.0,
+        }
+    }
+
+    /// Edge cracks and branches with a free end leave the specimen whole;
+    /// a crack from boundary to boundary, a chain of two linked at a
+    /// junction, or a loop of junctions cut it apart.
+    #[test]
+    fn cut_apart_finds_a_chain_from_boundary_to_boundary() {
+        use TipKind::{Boundary, Free, Junction};
+        let j = |main| Junction { main };
+        assert!(!cut_apart(&[]));
+        assert!(!cut_apart(&[crack([Boundary, Free])]));
+        assert!(cut_apart(&[crack([Boundary, Boundary])]));
+        // a wing from the boundary ends on an edge crack: still one edge crack
+        assert!(!cut_apart(&[crack([Boundary, Free]), crack([j(0), Free])]));
+        assert!(cut_apart(&[
+            crack([Boundary, Free]),
+            crack([j(0), Boundary])
+        ]));
+        // an interior crack whose two wings end on it: a closed loop
+        assert!(cut_apart(&[crack([Free, Free]), crack([j(0), j(0)])]));
+        // two interior cracks linked both ways
+        assert!(cut_apart(&[crack([j(1), Free]), crack([j(0), Free])]));
+        // the pivot scene after step 42: crack 1 runs bottom to top, crack
+        // 0 has a free tip
+        assert!(cut_apart(&[
+            crack([Free, Boundary]),
+            crack([Boundary, Boundary])
+        ]));
+    }
 }

@@ -226,14 +226,8 @@ pub enum Sampling {
     Williams,
     /// Singular Williams terms with K_I, K_II at r0 plus the uniform part of
     /// the computed field at the tip (T, face tractions, far field), fitted
-    /// on rings of 2–4 element sizes: independent of r0/h. At a closed tip
-    /// of a grown segment (not the crack the scene gives), the computed
-    /// field: there the faces within 2h of the tip, which set the uniform
-    /// part, carry a small part of the normal stress through the joint the
-    /// segment inherits (the rest is the negative K_I the singular term
-    /// leaves out), and the sum showed tension (σ_θθ,max 11.2 MPa, a −70°
-    /// kink) where the field at r0 is compressive (−3.3 MPa): closed wings
-    /// saw-toothed.
+    /// on rings of 2–4 element sizes: independent of r0/h, the same at
+    /// every tip.
     #[default]
     Hybrid,
 }
@@ -243,12 +237,14 @@ pub enum Sampling {
 #[serde(rename_all = "snake_case")]
 pub enum ShearStrength {
     /// `|τ| ≥ σ_n μ + c_c + K_IIC/√(2π r0)`: friction and cohesion of the
-    /// crack's own faces plus the shear analogue of σ_t, checked straight
-    /// ahead of a closed tip (θ1 = 0: the faces extending in their own
-    /// plane), where it is `K_II ≥ K_IIC`.
+    /// crack's own faces plus the shear analogue of σ_t, at a tip whose
+    /// faces are closed, on the circle's Mohr–Coulomb critical plane (the
+    /// largest |τ| over strength). Straight ahead of a closed tip
+    /// (θ1 = 0) it is `K_II ≥ K_IIC`.
     #[default]
     Faces,
-    /// `|τ| ≥ σ_n tan φ + c` with the rock's friction angle and cohesion.
+    /// `|τ| ≥ σ_n tan φ + c` with the rock's friction angle and cohesion,
+    /// on the circle's Mohr–Coulomb critical plane, at every tip.
     Rock,
 }
 

@@ -33,10 +33,11 @@ pub struct Resume {
     /// 1 stick, 2 slip; gaps in m, tractions in Pa.
     #[serde(default)]
     pub faces: Vec<[f64; 6]>,
-    /// Per crack, the segments grown at its first and at its last point
-    /// (the default sampling reads the computed field at a closed tip of a
-    /// grown segment, so a reopened scene must know which tips grew).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    /// Per crack, the segments grown at its two ends, as scenes saved by
+    /// version 0.1 wrote them. Read and ignored: the criterion no longer
+    /// depends on which tips grew (one rule at every tip), so nothing
+    /// needs it; never written.
+    #[serde(default, skip_serializing)]
     pub grown: Vec<[usize; 2]>,
 }
 

@@ -10,7 +10,7 @@ use crate::contact::law::{FaceState, carry_over, counts};
 use crate::discretisation::xfem::Reuse;
 use crate::error::SolveError;
 use crate::fracture::growth::{apply, default_increment, extend};
-use crate::geometry::cracks::{Crack, TipKind, classify_tips};
+use crate::geometry::cracks::{Crack, TipKind, classify_tips, cut_apart};
 use crate::geometry::plane::P2;
 use crate::report::{
     ContactCounts, GrownTip, GrowthStepReport, Mode, Outcome, SolveReport, TipReport,
@@ -67,7 +67,31 @@ impl Simulation {
     ///
     /// It returns `None` until that last call; after a solve the state is
     /// solved and can be shown.
+    ///
+    /// A stiffness found singular after growth has cut the specimen apart
+    /// ([`cut_apart`]: a crack chain from boundary to boundary, or a closed
+    /// loop) is the specimen through, not an error: a piece held only by
+    /// its crack faces has a rigid motion once they open, and growth ends
+    /// [`Outcome::Through`] with the steps recorded so far, free tips left
+    /// or not (returning the last step's report). Where contact still
+    /// holds the pieces the solve succeeds and growth goes on.
     pub fn advance_growth(
+        &mut self,
+        max_iterations: usize,
+    ) -> Result<Option<GrowthStepReport>, SolveError> {
+        match self.advance_growth_chunk(max_iterations) {
+            Err(SolveError::NotPositiveDefinite { .. })
+                if !self.state.history.is_empty() && cut_apart(&self.state.cracks) =>
+            {
+                self.state.outcome = Some(Outcome::Through);
+                Ok(self.state.history.last().cloned())
+            }
+            result => result,
+        }
+    }
+
+    /// [`advance_growth`](Self::advance_growth) but for a split specimen.
+    fn advance_growth_chunk(
         &mut self,
         max_iterations: usize,
     ) -> Result<Option<GrowthStepReport>, SolveError> {
@@ -244,7 +268,7 @@ impl Simulation {
             increment: self.state.increment,
             growths_here: self.state.growths_here,
             faces: self.state.faces.iter().map(FaceState::saved).collect(),
-            grown: self.state.cracks.iter().map(|c| c.grown).collect(),
+            grown: Vec::new(),
         }
     }
 

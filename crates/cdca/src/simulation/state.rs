@@ -85,10 +85,7 @@ impl Simulation {
     /// only when `growth.resume` does not fit the cracks' discretisation.
     pub fn new(scene: Scene) -> Result<Self, SolveError> {
         let model = Model::new(scene.clone());
-        let mut cracks = model.initial_cracks();
-        if let Some(r) = scene.growth.resume.as_ref().filter(|r| !r.grown.is_empty()) {
-            restore_grown(&mut cracks, &r.grown)?;
-        }
+        let cracks = model.initial_cracks();
         let xfem = model.discretise(cracks.clone());
         let f_ext = crate::discretisation::loads::traction_forces(&xfem, &scene.boundary);
         let n = xfem.n_free();
@@ -207,28 +204,4 @@ impl Simulation {
     pub fn is_solved(&self) -> bool {
         self.state.solved
     }
-}
-
-/// Sets each crack's count of grown segments at its two ends from
-/// `growth.resume.grown`: one entry per crack, at most the crack's segments.
-fn restore_grown(cracks: &mut [Crack], grown: &[[usize; 2]]) -> Result<(), SceneError> {
-    if grown.len() != cracks.len() {
-        return Err(SceneError::invalid(
-            "growth.resume.grown",
-            format!("{} entries", grown.len()),
-            format!("the scene has {} cracks", cracks.len()),
-        ));
-    }
-    for (i, (crack, g)) in cracks.iter_mut().zip(grown).enumerate() {
-        let segments = crack.points.len() - 1;
-        if g[0] + g[1] > segments {
-            return Err(SceneError::invalid(
-                format!("growth.resume.grown[{i}]"),
-                format!("[{}, {}]", g[0], g[1]),
-                format!("crack {i} has {segments} segments"),
-            ));
-        }
-        crack.grown = *g;
-    }
-    Ok(())
 }

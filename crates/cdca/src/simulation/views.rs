@@ -139,7 +139,10 @@ impl Simulation {
     /// σ_θθ and τ_rθ around tip `index` of `tips()`.
     pub fn criterion_curve(&self, index: usize) -> Option<CriterionCurve> {
         let c = self.scratch.circles.get(index)?;
-        let p = self.criterion_params();
+        let tip = self.scratch.tips.get(index)?;
+        let p = self
+            .criterion_params()
+            .for_crack(self.scratch.xfem.funcs.cracks.get(tip.crack)?.length());
         let faces = *self.scratch.tip_faces.get(index)?;
         Some(CriterionCurve {
             theta_deg: c.theta.iter().map(|t| t.to_degrees()).collect(),

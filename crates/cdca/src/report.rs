@@ -47,7 +47,8 @@ pub struct ContactReport {
     /// Dimensionless normal stiffness k_N h / E (largest over cracks; 0 with
     /// no cracks).
     pub kn_h_over_e: f64,
-    /// Points that flipped between states too often and were frozen.
+    /// Points that flipped between states too often: frozen (automaton's
+    /// in-sweep rule), or counted when the contact iteration was capped.
     #[serde(default)]
     pub cycling: usize,
     /// Frozen points whose state breaks the stick/slip rule at the final
@@ -221,8 +222,8 @@ impl SolveReport {
             Some(format!(
                 "the contact iteration did not settle within {} contact iterations \
                  (solver.max_contact_iterations): states still changing or, with slip, \
-                 u still moving (last relative change {:.3e}); {} points frozen for \
-                 stick–slip cycling",
+                 u still moving (last relative change {:.3e}); {} points cycling \
+                 between states",
                 c.iterations, c.residual, c.cycling
             ))
         } else if c.violating > 0 {

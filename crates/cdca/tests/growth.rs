@@ -635,11 +635,12 @@ fn a_scene_saved_after_a_junction_grows_the_same_next_steps() {
 /// Stick–slip cycling during growth: on the bundled 45° plate (k = 0.1,
 /// μ = 0.5) the contact iteration of step 29 cycled with the slip friction
 /// taken from the last iterate, froze a point that then broke the Coulomb
-/// law, and growth stopped `not_converged`. After cycling the iteration
-/// damps its steps by a line search on the contact law's residual and
-/// releases frozen points that break the law, so every one of the 29
-/// steps converges (no point frozen at the end, every face point of step
-/// 29 in the state the return mapping gives, i.e. `violating` = 0).
+/// law, and growth stopped `not_converged`. The iteration now holds the
+/// friction limits fixed in an inner problem whose steps a line search on
+/// the contact law's residual damps, and updates them in an outer loop, so
+/// every one of the 29 steps converges (nothing cycling at the end, every
+/// face point of step 29 in the state the return mapping gives, i.e.
+/// `violating` = 0).
 #[test]
 fn contact_iteration_settles_after_stick_slip_cycling() {
     let text = include_str!("../../../assets/scenes/plate_45_biaxial_k0.1_mu0.5.json");
@@ -663,6 +664,46 @@ fn contact_iteration_settles_after_stick_slip_cycling() {
         "λ {}",
         last.load_factor
     );
+}
+
+/// The stepped flaw pair on the contact a drawn crack gets (penalty
+/// `k_N = 100 E/h`, no joint stiffness): with friction taken from the last
+/// iterate the contact iteration of step 15 never settled (31 points
+/// frozen, growth stopped `not_converged`). With the friction limits held
+/// fixed in an inner (Tresca) problem and updated in an outer loop, steps
+/// 1–16 converge with every point in its Coulomb state (nothing frozen or
+/// violating), and steps 1–14 find the λ_cr the old iteration found (its
+/// values, to the search's bracket, 1e-3).
+#[test]
+fn stepped_pair_converges_on_the_default_contact() {
+    let old = [
+        0.8069, 0.7439, 0.7757, 0.6967, 1.185, 1.1467, 1.6946, 1.6685, 1.5907, 1.6412, 1.587,
+        1.8019, 1.7812, 1.7059,
+    ];
+    let mut scene = bundled("specimen_two_flaws_stepped");
+    for c in &mut scene.cracks {
+        c.normal_stiffness = None;
+        c.shear_stiffness = None;
+    }
+    let mut sim = Simulation::new(valid(scene)).expect("valid");
+    for k in 0..16 {
+        let step = sim.grow_step().expect("step");
+        assert!(
+            step.converged,
+            "step {} did not converge: {:?}",
+            step.step, step.failure
+        );
+        let c = &sim.history().last().expect("a step").contact;
+        assert_eq!((c.cycling, c.violating), (0, 0), "step {}", step.step);
+        if let Some(&l) = old.get(k) {
+            let got = sim.history().last().expect("a step").load_factor;
+            assert!(
+                (got - l).abs() <= 1e-3 * l,
+                "step {}: λ {got} vs {l}",
+                k + 1
+            );
+        }
+    }
 }
 
 /// Issue 17's held-out flaws: a closed flaw drawn in the default scene as a

@@ -448,7 +448,7 @@ fn visit(
 
 /// Whether the return mapping at `u` gives every free point its state, and
 /// how many frozen points break the law (see
-/// [`update_states`](crate::contact::iteration::update_states)).
+/// [`breaks_law`](crate::contact::iteration::breaks_law)).
 fn final_check(
     x: &Xfem,
     committed: &[FaceState],

@@ -129,6 +129,24 @@ pub fn gaps(x: &Xfem, fp: &FacePoint, u: &[f64]) -> (f64, f64) {
 /// The return mapping: new state of a point from its gaps, given the slip
 /// committed at the last converged step.
 pub fn update_point(crack: &Crack, committed_slip: f64, g_n: f64, g_t: f64) -> FaceState {
+    update_point_limited(crack, committed_slip, g_n, g_t, friction_limit(crack, g_n))
+}
+
+/// The Coulomb limit `τ_y = μ|p_N| + c_c` at the normal gap `g_n` (the
+/// cohesion alone when open).
+pub fn friction_limit(crack: &Crack, g_n: f64) -> f64 {
+    crack.friction * (crack.kn * g_n.min(0.0)).abs() + crack.cohesion
+}
+
+/// The return mapping with the friction limit `tau_y` given (Tresca
+/// friction; [`update_point`] with `τ_y = μ|p_N| + c_c`).
+pub fn update_point_limited(
+    crack: &Crack,
+    committed_slip: f64,
+    g_n: f64,
+    g_t: f64,
+    tau_y: f64,
+) -> FaceState {
     if g_n >= 0.0 {
         return FaceState {
             state: ContactState::Open,
@@ -141,7 +159,6 @@ pub fn update_point(crack: &Crack, committed_slip: f64, g_n: f64, g_t: f64) -> F
     }
     let p_n = crack.kn * g_n;
     let trial = crack.kt * (g_t - committed_slip);
-    let tau_y = crack.friction * p_n.abs() + crack.cohesion;
     if trial.abs() <= tau_y {
         FaceState {
             state: ContactState::Stick,
@@ -172,6 +189,19 @@ pub fn contact_system(
     committed: &[FaceState],
     f: &mut [f64],
 ) -> Vec<ElementBlock> {
+    contact_system_split(x, states, committed, |_| true, f)
+}
+
+/// [`contact_system`] with the normal penalty `k_N n⊗n` only at the stuck
+/// or slipping points `closed` accepts (the Tresca inner problem of the
+/// contact iteration, where a point may open and still carry friction).
+pub fn contact_system_split(
+    x: &Xfem,
+    states: &[FaceState],
+    committed: &[FaceState],
+    closed: impl Fn(&FaceState) -> bool,
+    f: &mut [f64],
+) -> Vec<ElementBlock> {
     let mut blocks: BTreeMap<usize, DMatrix<f64>> = BTreeMap::new();
     for (i, fp) in x.faces.iter().enumerate() {
         let st = &states[i];
@@ -184,7 +214,9 @@ pub fn contact_system(
         let k = blocks
             .entry(fp.slot)
             .or_insert_with(|| DMatrix::zeros(nd, nd));
-        k.ger(fp.w * crack.kn, &jn, &jn, 1.0);
+        if closed(st) {
+            k.ger(fp.w * crack.kn, &jn, &jn, 1.0);
+        }
         // force on the right-hand side: stick `+w k_T g_T^s J_t`, slip `−w p_T J_t`
         let ft = match st.state {
             ContactState::Stick => {

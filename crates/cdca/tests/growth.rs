@@ -667,8 +667,8 @@ fn contact_iteration_settles_after_stick_slip_cycling() {
     );
 }
 
-/// The stepped flaw pair on the contact a drawn crack gets (penalty
-/// `k_N = 100 E/h`, no joint stiffness): with friction taken from the last
+/// The bundled stepped flaw pair, on the contact a drawn crack gets
+/// (penalty `k_N = 100 E/h`, no joint stiffness): with friction taken from the last
 /// iterate the contact iteration of step 15 never settled (31 points
 /// frozen, growth stopped `not_converged`). With the friction limits held
 /// fixed in an inner (Tresca) problem and updated in an outer loop, steps
@@ -681,11 +681,8 @@ fn stepped_pair_converges_on_the_default_contact() {
         0.8069, 0.7439, 0.7757, 0.6967, 1.185, 1.1467, 1.6946, 1.6685, 1.5907, 1.6412, 1.587,
         1.8019, 1.7812, 1.7059,
     ];
-    let mut scene = bundled("specimen_two_flaws_stepped");
-    for c in &mut scene.cracks {
-        c.normal_stiffness = None;
-        c.shear_stiffness = None;
-    }
+    let scene = bundled("specimen_two_flaws_stepped");
+    assert!(scene.cracks.iter().all(|c| c.normal_stiffness.is_none()));
     let mut sim = Simulation::new(valid(scene)).expect("valid");
     for k in 0..16 {
         let step = sim.grow_step().expect("step");

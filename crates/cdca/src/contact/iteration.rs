@@ -11,7 +11,8 @@
 use nalgebra::{DMatrix, DVector};
 
 use crate::contact::law::{
-    ContactState, FaceState, contact_system_split, friction_limit, gaps, update_point,
+    ContactState, FaceState, contact_system_split, friction_limit, gaps, stick_or_slip,
+    update_point,
 };
 use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::dofs::FIXED;
@@ -730,28 +731,14 @@ fn tresca_point(crack: &Crack, committed_slip: f64, g_n: f64, g_t: f64, tau_y: f
     if g_n >= 0.0 && tau_y <= 0.0 {
         return update_point(crack, committed_slip, g_n, g_t);
     }
-    let p_n = crack.kn * g_n.min(0.0);
-    let trial = crack.kt * (g_t - committed_slip);
-    if trial.abs() <= tau_y {
-        FaceState {
-            state: ContactState::Stick,
-            slip: committed_slip,
-            g_n,
-            g_t,
-            p_n,
-            p_t: trial,
-        }
-    } else {
-        let p_t = tau_y * trial.signum();
-        FaceState {
-            state: ContactState::Slip,
-            slip: g_t - p_t / crack.kt,
-            g_n,
-            g_t,
-            p_n,
-            p_t,
-        }
-    }
+    stick_or_slip(
+        crack,
+        committed_slip,
+        g_n,
+        g_t,
+        crack.kn * g_n.min(0.0),
+        tau_y,
+    )
 }
 
 /// The matrix the states give (its kind per point), or `None` when some

@@ -157,7 +157,21 @@ pub fn update_point_limited(
             p_t: 0.0,
         };
     }
-    let p_n = crack.kn * g_n;
+    stick_or_slip(crack, committed_slip, g_n, g_t, crack.kn * g_n, tau_y)
+}
+
+/// The tangential return mapping at the gaps `(g_n, g_t)` with the normal
+/// traction `p_n` and the friction limit `tau_y`: stick while the trial
+/// traction `k_T (g_T − g_T^s)` stays within ±τ_y, else slip at ±τ_y with
+/// the slip moved along.
+pub(crate) fn stick_or_slip(
+    crack: &Crack,
+    committed_slip: f64,
+    g_n: f64,
+    g_t: f64,
+    p_n: f64,
+    tau_y: f64,
+) -> FaceState {
     let trial = crack.kt * (g_t - committed_slip);
     if trial.abs() <= tau_y {
         FaceState {

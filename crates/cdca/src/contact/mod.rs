@@ -1,10 +1,10 @@
 //! Frictional contact on closed crack faces (SPEC §5): the penalty
 //! stick/slip law with Coulomb friction and cohesion per face piece, and
-//! the contact iteration around any linear solver: a fixed-point
-//! (active-set) loop that solves with the current stick/slip/open states,
-//! updates every state by the return mapping and repeats until none
-//! changes, with a guard against stick–slip cycling and an explicit status;
-//! or, with the automaton, the paper's rule: states updated in the sweep.
+//! the contact iteration around any linear solver: an active-set loop with
+//! the friction limits held fixed (an inner, convex Tresca problem, damped
+//! by a line search) inside an outer loop that updates the limits to
+//! μ|p_N| + c_c, ending with an explicit status; or, with the automaton, the
+//! paper's rule: states updated in the sweep.
 //!
 //! Uses the discretisation (face points, element blocks) and the solvers'
 //! common trait.

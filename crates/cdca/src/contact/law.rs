@@ -127,26 +127,9 @@ pub fn gaps(x: &Xfem, fp: &FacePoint, u: &[f64]) -> (f64, f64) {
 }
 
 /// The return mapping: new state of a point from its gaps, given the slip
-/// committed at the last converged step.
+/// committed at the last converged step: open where `g_N ≥ 0`, else
+/// the tangential return mapping with `p_N = k_N g_N` and the Coulomb limit.
 pub fn update_point(crack: &Crack, committed_slip: f64, g_n: f64, g_t: f64) -> FaceState {
-    update_point_limited(crack, committed_slip, g_n, g_t, friction_limit(crack, g_n))
-}
-
-/// The Coulomb limit `τ_y = μ|p_N| + c_c` at the normal gap `g_n` (the
-/// cohesion alone when open).
-pub fn friction_limit(crack: &Crack, g_n: f64) -> f64 {
-    crack.friction * (crack.kn * g_n.min(0.0)).abs() + crack.cohesion
-}
-
-/// The return mapping with the friction limit `tau_y` given (Tresca
-/// friction; [`update_point`] with `τ_y = μ|p_N| + c_c`).
-pub fn update_point_limited(
-    crack: &Crack,
-    committed_slip: f64,
-    g_n: f64,
-    g_t: f64,
-    tau_y: f64,
-) -> FaceState {
     if g_n >= 0.0 {
         return FaceState {
             state: ContactState::Open,
@@ -157,7 +140,14 @@ pub fn update_point_limited(
             p_t: 0.0,
         };
     }
+    let tau_y = friction_limit(crack, g_n);
     stick_or_slip(crack, committed_slip, g_n, g_t, crack.kn * g_n, tau_y)
+}
+
+/// The Coulomb limit `τ_y = μ|p_N| + c_c` at the normal gap `g_n` (the
+/// cohesion alone when open).
+pub fn friction_limit(crack: &Crack, g_n: f64) -> f64 {
+    crack.friction * (crack.kn * g_n.min(0.0)).abs() + crack.cohesion
 }
 
 /// The tangential return mapping at the gaps `(g_n, g_t)` with the normal

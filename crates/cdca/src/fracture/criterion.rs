@@ -381,9 +381,8 @@ pub fn assess(
                 return (out, utilisation);
             };
             let tau = interpolate(&circle.theta, &circle.tau_rt, t1).abs();
-            let sigma_n = -interpolate(&circle.theta, &circle.sigma_tt, t1);
             out.angle_deg = t1.to_degrees();
-            let strength = sigma_n.max(0.0) * friction + cohesion;
+            let strength = strength_at(interpolate(&circle.theta, &circle.sigma_tt, t1));
             utilisation = f64::max(utilisation, ratio(tau, strength));
             if tau >= strength {
                 out.mode = Mode::Shear;

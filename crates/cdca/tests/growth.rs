@@ -4,7 +4,7 @@ mod common;
 
 use cdca::Simulation;
 use cdca::geometry::cracks::TipKind;
-use cdca::report::Mode;
+use cdca::report::{Mode, Outcome};
 use cdca::scene::{
     CrackSpec, CriterionKind, Fix, GrowthControl, Plane, PointSupport, Sampling, Scene, SceneFile,
     SideBc,
@@ -419,7 +419,7 @@ fn stepped_flaws_coalesce() {
 /// Coalescence of overlapping flaws under the product's defaults (critical
 /// control, default criterion), issue "overlapping pair does not link":
 /// the bundled overlapping pair on a coarser mesh (80 × 80; at 100 × 100 it
-/// links at step 17, see README) and a held-out overlapping pair (two
+/// links at step 31, see README) and a held-out overlapping pair (two
 /// 3.4 mm flaws at 50°, the second 2.6 mm to the right and 1.5 mm below,
 /// 100 × 100). Within 30 steps, every one converged, a wing grown from one
 /// flaw ends on the other flaw's crack (a junction), and that wing is at
@@ -433,7 +433,7 @@ fn stepped_flaws_coalesce() {
 /// upper flaw's up, the lower flaw's down) and the wings run parallel to
 /// the specimen's ends. With the default contact the bundled pair links at
 /// 100 × 100 (the left flaw's upper wing runs onto the right flaw's upper
-/// wing at step 32) but not at 80 × 80 within 30 steps, nor does the
+/// wing at step 31) but not at 80 × 80 within 30 steps, nor does the
 /// held-out pair: a link between parallel wings, sensitive to the mesh. The
 /// experiments' link runs through the bridge from a tip that already has a
 /// wing, which needs a second crack from that tip (branching), not in the
@@ -492,6 +492,42 @@ fn overlapping_flaws_coalesce() {
             assert!(l >= length(flaw), "{name}: wing {l} shorter than the flaw");
         }
     }
+}
+
+/// Every growth step converges on a held-out overlapping pair grown to
+/// failure with the product's defaults (the contact a drawn crack gets):
+/// the bundled pair's 3 mm flaws at 45° (μ = 0.5) moved to centres 2.4 mm
+/// apart across the load and 1.2 mm along it, 100 × 100. With the earlier
+/// contact-iteration cap of 50 its step 35 stopped unconverged on a trial
+/// solve that needed 54 iterations; the default cap is now 100 (the
+/// largest count among 1159 converged trials on 16 held-out pairs was 73).
+#[test]
+fn held_out_overlapping_pair_converges_to_failure() {
+    let text = include_str!("../../../assets/scenes/specimen_two_flaws_overlapping.json");
+    let mut scene = Scene::from_json(text).expect("scene").into_file();
+    let half = 0.0015 * std::f64::consts::FRAC_1_SQRT_2;
+    for (crack, (cx, cy)) in scene
+        .cracks
+        .iter_mut()
+        .zip([(0.0138, 0.0156), (0.0162, 0.0144)])
+    {
+        crack.points = Some(vec![[cx - half, cy - half], [cx + half, cy + half]]);
+    }
+    let mut sim = Simulation::new(valid(scene)).expect("valid");
+    let mut most = 0;
+    while sim.growth_finished().is_none() {
+        let step = sim.grow_step().expect("step");
+        assert!(
+            step.converged,
+            "step {} did not converge: {:?}",
+            step.step, step.failure
+        );
+        most = most.max(step.contact.iterations);
+    }
+    let steps = sim.history().len();
+    println!("{steps} steps, at most {most} contact iterations at λ_cr");
+    assert_eq!(sim.growth_finished(), Some(Outcome::Through));
+    assert!(steps >= 30, "ended after {steps} steps");
 }
 
 /// Regression: after growth the discretisation reuses element matrices away
@@ -571,10 +607,7 @@ fn the_end_of_a_run_is_solved_at_the_last_load() {
     while sim.growth_finished().is_none() {
         sim.grow_step().expect("step");
     }
-    assert_eq!(
-        sim.growth_finished(),
-        Some(cdca::report::Outcome::Completed)
-    );
+    assert_eq!(sim.growth_finished(), Some(Outcome::Completed));
     let last = sim.history().last().expect("steps").clone();
     assert_eq!(sim.start_final_solve(), Some(last.load_factor));
     let report = sim.solve().expect("the final geometry solves");
@@ -823,7 +856,7 @@ fn growth_that_cuts_the_specimen_apart_ends_through() {
     }
     let mut sim = Simulation::new(valid(s.clone())).expect("valid");
     run(&mut sim);
-    assert_eq!(sim.growth_finished(), Some(cdca::report::Outcome::Through));
+    assert_eq!(sim.growth_finished(), Some(Outcome::Through));
     let history = sim.history();
     assert_eq!(history.len(), 40, "steps kept");
     assert!(history.iter().all(|st| st.converged));

@@ -45,7 +45,7 @@ impl Default for ContactParams {
     fn default() -> Self {
         Self {
             tolerance: 1e-8,
-            max_iterations: 50,
+            max_iterations: 100,
             max_flips: 4,
         }
     }

@@ -453,8 +453,12 @@ fn default_max_iterations() -> usize {
 fn default_contact_tolerance() -> f64 {
     1e-8
 }
+/// Contact iterations allowed per solve. On 16 held-out flaw pairs grown
+/// to failure (1159 trial solves) a solve that converged took 8 iterations
+/// (median), 27 (99th percentile) and at most 73; with 50, four of the
+/// runs stopped unconverged at a trial that needed 51–73.
 fn default_max_contact_iterations() -> usize {
-    50
+    100
 }
 
 impl SceneFile {

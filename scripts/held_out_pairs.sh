@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# Held-out flaw pairs (README, "Coalescence"): the bundled stepped and
+# overlapping layouts centred in the specimen, then one thing varied at a
+# time (offset across or along the load, flaw angle, friction), each grown
+# to failure with `cdca grow` (100 × 100, product defaults). Prints one row
+# per run (outcome, steps, whether every step converged, the steps at which
+# a grown tip ended on the other crack) and writes bench-out/pairs.csv.
+# Usage: bash scripts/held_out_pairs.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo build --release -q -p cdca-cli
+mkdir -p bench-out/pairs
+python3 - <<'PY'
+import csv, json, math, subprocess
+base = json.load(open("assets/scenes/specimen_two_flaws_stepped.json"))
+
+def flaw(cx, cy, deg, mu, length=0.003):
+    a = math.radians(deg)
+    dx, dy = 0.5 * length * math.cos(a), 0.5 * length * math.sin(a)
+    return {"points": [[cx - dx, cy - dy], [cx + dx, cy + dy]], "friction": mu}
+
+def on_polyline(p, poly):
+    for a, b in zip(poly, poly[1:]):
+        ax, ay = b[0] - a[0], b[1] - a[1]
+        l2 = ax * ax + ay * ay
+        t = 0.0 if l2 == 0 else max(0.0, min(1.0, ((p[0] - a[0]) * ax + (p[1] - a[1]) * ay) / l2))
+        if math.dist(p, (a[0] + t * ax, a[1] + t * ay)) < 1e-7:
+            return True
+    return False
+
+# (layout, offset across, offset along the load (mm), angle (deg), friction)
+runs = [("stepped", 1.6, 5, 45, 0.5), ("stepped", 1.0, 5, 45, 0.5), ("stepped", 2.2, 5, 45, 0.5),
+        ("stepped", 1.6, 4, 45, 0.5), ("stepped", 1.6, 6, 45, 0.5), ("stepped", 1.6, 5, 40, 0.5),
+        ("stepped", 1.6, 5, 50, 0.5), ("stepped", 1.6, 5, 45, 0.3),
+        ("overlapping", 2.8, -1.2, 45, 0.5), ("overlapping", 2.4, -1.2, 45, 0.5),
+        ("overlapping", 3.2, -1.2, 45, 0.5), ("overlapping", 2.8, -0.8, 45, 0.5),
+        ("overlapping", 2.8, -1.6, 45, 0.5), ("overlapping", 2.8, -1.2, 40, 0.5),
+        ("overlapping", 2.8, -1.2, 50, 0.5), ("overlapping", 2.8, -1.2, 45, 0.3)]
+rows = []
+print(f"{'layout':12s} {'across':>6s} {'along':>6s} {'angle':>5s} {'mu':>4s}  {'outcome':14s} {'steps':>5s} {'converged':>9s}  links at steps")
+for layout, dx, dy, deg, mu in runs:
+    scene = json.loads(json.dumps(base))
+    scene["name"] = f"held-out {layout} pair"
+    scene["cracks"] = [flaw(0.015 - dx / 2e3, 0.015 - dy / 2e3, deg, mu),
+                       flaw(0.015 + dx / 2e3, 0.015 + dy / 2e3, deg, mu)]
+    path = f"bench-out/pairs/{layout}_{dx}_{dy}_{deg}_{mu}.json"
+    json.dump(scene, open(path, "w"), indent=1)
+    # exit 1 (a step that did not converge) still prints the history
+    report = json.loads(subprocess.run(["./target/release/cdca", "grow", path],
+                                       capture_output=True, text=True).stdout)
+    links = sorted({s["step"] for s in report["steps"] for g in s["grown"]
+                    if any(k != g["crack"] and on_polyline((g["x"], g["y"]), c)
+                           for k, c in enumerate(report["cracks"]))})
+    converged = all(s["converged"] for s in report["steps"])
+    rows.append([layout, dx, dy, deg, mu, report["outcome"], len(report["steps"]), converged,
+                 " ".join(map(str, links))])
+    print(f"{layout:12s} {dx:6.1f} {dy:6.1f} {deg:5d} {mu:4.1f}  {report['outcome']:14s} "
+          f"{len(report['steps']):5d} {str(converged):>9s}  {' '.join(map(str, links)) or '-'}", flush=True)
+with open("bench-out/pairs.csv", "w", newline="") as f:
+    w = csv.writer(f)
+    w.writerow(["layout", "across_mm", "along_mm", "angle_deg", "friction", "outcome", "steps",
+                "every_step_converged", "link_steps"])
+    w.writerows(rows)
+PY

@@ -832,17 +832,52 @@ fn wing_from_point(c: &[[f64; 2]], p: [f64; 2], k: usize) -> Vec<[f64; 2]> {
     }
 }
 
-/// Regression: growth that cuts the specimen apart while other tips are
-/// still free ends `through`, with every step kept. The bundled
-/// overlapping flaws with the paper's soft joint on a 64 × 64 mesh: at step 40 the lower wing of crack
-/// 0 reaches the bottom, so crack 0 runs from the bottom to the top and the
-/// part right of it is held in x by its crack faces alone; crack 1 still
-/// has a free tip. Before, step 41's factorisation met a non-positive pivot
-/// (the piece's rigid motion once the faces open) and `grow_step` returned
-/// the error: the 40 steps were lost. The reference that the cut is a real
-/// mechanism: a fresh solve of the final cracks fails the same way, while
-/// the same cracks with the last segment stopped half an element short of
-/// the boundary (a ligament left) solve and converge.
+/// Growth ends `through` at the step that splits the specimen even where
+/// contact still holds its pieces: in the bundled stepped pair the chain
+/// bottom – crack 0 – junction – crack 1 – top closes when crack 1's upper
+/// wing reaches the top, with crack 1's lower tip still free. Before, growth
+/// went on from that tip for ten more steps while the penalty contact held
+/// the two halves together; on held-out pairs such runs went on to
+/// `max_steps`, or stopped `not_converged` with the contact iteration
+/// cycling between the halves (λ_cr fallen to 0.11). The reference that the
+/// faces hold the halves: a fresh solve of the final cracks converges.
+#[test]
+fn growth_ends_when_the_specimen_is_split() {
+    let mut sim = Simulation::new(valid(bundled("specimen_two_flaws_stepped"))).expect("valid");
+    run(&mut sim);
+    assert_eq!(sim.growth_finished(), Some(Outcome::Through));
+    assert!(sim.history().iter().all(|st| st.converged));
+    let tips: Vec<[TipKind; 2]> = sim.xfem().funcs.cracks.iter().map(|c| c.tips).collect();
+    println!("{} steps, tips {tips:?}", sim.history().len());
+    // the chain from the bottom to the top, and a free tip left
+    assert!(tips[0].contains(&TipKind::Boundary) && tips[1].contains(&TipKind::Boundary));
+    assert!(tips[0].contains(&TipKind::Junction { main: 1 }));
+    assert!(tips[1].contains(&TipKind::Free));
+    let last = sim.history().last().expect("steps");
+    assert!(
+        last.grown.iter().any(|g| (g.y - 0.03).abs() < 1e-12),
+        "the last step reached the top: {:?}",
+        last.grown
+    );
+    let report = Simulation::new(sim.scene().clone())
+        .expect("valid")
+        .solve()
+        .expect("the contact holds the halves");
+    assert!(report.converged(), "{:?}", report.contact);
+}
+
+/// Regression: growth that splits the specimen while other tips are still
+/// free ends `through`, with every step kept. The bundled overlapping flaws
+/// with the paper's soft joint on a 64 × 64 mesh: at step 40 the lower wing
+/// of crack 0 reaches the bottom, so crack 0 runs from the bottom to the
+/// top and the part right of it is held in x by its crack faces alone;
+/// crack 1 still has a free tip. Once, step 41's factorisation met a
+/// non-positive pivot (the piece's rigid motion once the faces open) and
+/// `grow_step` returned the error: the 40 steps were lost. The reference
+/// that the cut is a real mechanism: a fresh solve of the final cracks
+/// fails the same way, while the same cracks with the last segment stopped
+/// half an element short of the boundary (a ligament left) solve and
+/// converge.
 #[test]
 fn growth_that_cuts_the_specimen_apart_ends_through() {
     let mut s = bundled("specimen_two_flaws_overlapping");

@@ -154,43 +154,57 @@ pub fn classify_tips(cracks: &mut [Crack], width: f64, height: f64, tol: f64) {
     }
 }
 
-/// Whether the cracks cut the specimen apart: a chain of cracks linked at
-/// junctions runs from the boundary back to the boundary, or closes on
-/// itself, so that some piece of the specimen is bounded by cracks (and the
-/// boundary) alone. Such a piece holds together only through its crack
-/// faces; once they open it has a rigid motion, and the stiffness is
-/// singular (the growth history ends `through` there, SPEC §9).
+/// Whether the cracks split the specimen: a chain of cracks linked at
+/// junctions runs from the boundary back to the boundary, so that the
+/// pieces on either side hold together only through their crack faces
+/// (once those open a piece has a rigid motion and the stiffness is
+/// singular). A closed loop of cracks inside the specimen cuts out a
+/// fragment but leaves the specimen whole around it.
 ///
 /// In the graph whose vertices are the cracks and the boundary, and whose
 /// edges are the non-free tips (a boundary tip joins its crack to the
-/// boundary, a junction its crack to the main one), that is a cycle. The
-/// tips must be classified ([`classify_tips`]). Cracks that cross away from
-/// their tips (no junction) are not seen.
-pub fn cut_apart(cracks: &[Crack]) -> bool {
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
+/// boundary, a junction its crack to the main one), that is a cycle
+/// through the boundary: one of the boundary's edges joins two vertices
+/// that the other edges join too. The tips must be classified
+/// ([`classify_tips`]). Cracks that cross away from their tips (no
+/// junction) are not seen.
+pub fn split_specimen(cracks: &[Crack]) -> bool {
+    let boundary = cracks.len();
+    let edges: Vec<(usize, usize)> = tip_edges(cracks).collect();
+    edges.iter().enumerate().any(|(i, &(a, b))| {
+        if b != boundary {
+            return false;
         }
-        i
-    }
-    // union–find over the cracks and the boundary (index `cracks.len()`)
-    let mut parent: Vec<usize> = (0..=cracks.len()).collect();
-    for (c, crack) in cracks.iter().enumerate() {
-        for tip in crack.tips {
-            let other = match tip {
-                TipKind::Free => continue,
-                TipKind::Boundary => cracks.len(),
-                TipKind::Junction { main } => main,
-            };
-            let (a, b) = (root(&mut parent, c), root(&mut parent, other));
-            if a == b {
-                return true;
+        let mut parent: Vec<usize> = (0..=boundary).collect();
+        for (j, &(c, d)) in edges.iter().enumerate() {
+            if j != i {
+                let (rc, rd) = (root(&mut parent, c), root(&mut parent, d));
+                parent[rc] = rd;
             }
-            parent[a] = b;
         }
+        root(&mut parent, a) == root(&mut parent, b)
+    })
+}
+
+/// The edges of the graph of [`split_specimen`]: each non-free tip joins its
+/// crack to the boundary (index `cracks.len()`) or to its main crack.
+fn tip_edges(cracks: &[Crack]) -> impl Iterator<Item = (usize, usize)> + '_ {
+    cracks.iter().enumerate().flat_map(move |(c, crack)| {
+        crack.tips.iter().filter_map(move |tip| match tip {
+            TipKind::Free => None,
+            TipKind::Boundary => Some((c, cracks.len())),
+            TipKind::Junction { main } => Some((c, *main)),
+        })
+    })
+}
+
+/// Root of `i` in a union–find forest (with path halving).
+fn root(parent: &mut [usize], mut i: usize) -> usize {
+    while parent[i] != i {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
     }
-    false
+    i
 }
 
 /// Reference side of a junction: the sign of `φ_main` on the secondary
@@ -241,31 +255,43 @@ mod tests {
         }
     }
 
-    /// Edge cracks and branches with a free end leave the specimen whole;
-    /// a crack from boundary to boundary, a chain of two linked at a
-    /// junction, or a loop of junctions cut it apart.
+    /// A chain from boundary to boundary splits the specimen; a closed loop
+    /// inside it, or a chain with one end on the boundary, does not.
     #[test]
-    fn cut_apart_finds_a_chain_from_boundary_to_boundary() {
+    fn split_specimen_needs_a_chain_from_boundary_to_boundary() {
         use TipKind::{Boundary, Free, Junction};
         let j = |main| Junction { main };
-        assert!(!cut_apart(&[]));
-        assert!(!cut_apart(&[crack([Boundary, Free])]));
-        assert!(cut_apart(&[crack([Boundary, Boundary])]));
-        // a wing from the boundary ends on an edge crack: still one edge crack
-        assert!(!cut_apart(&[crack([Boundary, Free]), crack([j(0), Free])]));
-        assert!(cut_apart(&[
+        assert!(!split_specimen(&[]));
+        assert!(!split_specimen(&[crack([Boundary, Free])]));
+        assert!(split_specimen(&[crack([Boundary, Boundary])]));
+        assert!(split_specimen(&[
             crack([Boundary, Free]),
             crack([j(0), Boundary])
         ]));
-        // an interior crack whose two wings end on it: a closed loop
-        assert!(cut_apart(&[crack([Free, Free]), crack([j(0), j(0)])]));
-        // two interior cracks linked both ways
-        assert!(cut_apart(&[crack([j(1), Free]), crack([j(0), Free])]));
+        // through a third crack
+        assert!(split_specimen(&[
+            crack([Boundary, Free]),
+            crack([j(0), j(2)]),
+            crack([Free, Boundary])
+        ]));
+        // a wing from the boundary ends on an edge crack: still one edge crack
+        assert!(!split_specimen(&[
+            crack([Boundary, Free]),
+            crack([j(0), Free])
+        ]));
         // the pivot scene after step 42: crack 1 runs bottom to top, crack
         // 0 has a free tip
-        assert!(cut_apart(&[
+        assert!(split_specimen(&[
             crack([Free, Boundary]),
             crack([Boundary, Boundary])
+        ]));
+        // loops inside the specimen cut out a fragment only
+        assert!(!split_specimen(&[crack([Free, Free]), crack([j(0), j(0)])]));
+        assert!(!split_specimen(&[crack([j(1), Free]), crack([j(0), Free])]));
+        // a loop hanging off an edge crack
+        assert!(!split_specimen(&[
+            crack([Boundary, Free]),
+            crack([j(0), j(0)])
         ]));
     }
 }

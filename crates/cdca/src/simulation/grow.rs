@@ -10,7 +10,7 @@ use crate::contact::law::{FaceState, carry_over, counts};
 use crate::discretisation::xfem::Reuse;
 use crate::error::SolveError;
 use crate::fracture::growth::{apply, default_increment, extend};
-use crate::geometry::cracks::{Crack, TipKind, classify_tips, cut_apart};
+use crate::geometry::cracks::{Crack, TipKind, classify_tips, split_specimen};
 use crate::geometry::plane::P2;
 use crate::report::{
     ContactCounts, GrownTip, GrowthStepReport, Mode, Outcome, SolveReport, TipReport,
@@ -68,30 +68,11 @@ impl Simulation {
     /// It returns `None` until that last call; after a solve the state is
     /// solved and can be shown.
     ///
-    /// A stiffness found singular after growth has cut the specimen apart
-    /// ([`cut_apart`]: a crack chain from boundary to boundary, or a closed
-    /// loop) is the specimen through, not an error: a piece held only by
-    /// its crack faces has a rigid motion once they open, and growth ends
-    /// [`Outcome::Through`] with the steps recorded so far, free tips left
-    /// or not (returning the last step's report). Where contact still
-    /// holds the pieces the solve succeeds and growth goes on.
+    /// Growth ends [`Outcome::Through`] at the step whose extension splits
+    /// the specimen ([`split_specimen`]: a chain of cracks from boundary to
+    /// boundary), free tips left or not: its pieces are then held, if at
+    /// all, by their crack faces alone.
     pub fn advance_growth(
-        &mut self,
-        max_iterations: usize,
-    ) -> Result<Option<GrowthStepReport>, SolveError> {
-        match self.advance_growth_chunk(max_iterations) {
-            Err(SolveError::NotPositiveDefinite { .. })
-                if !self.state.history.is_empty() && cut_apart(&self.state.cracks) =>
-            {
-                self.state.outcome = Some(Outcome::Through);
-                Ok(self.state.history.last().cloned())
-            }
-            result => result,
-        }
-    }
-
-    /// [`advance_growth`](Self::advance_growth) but for a split specimen.
-    fn advance_growth_chunk(
         &mut self,
         max_iterations: usize,
     ) -> Result<Option<GrowthStepReport>, SolveError> {
@@ -236,6 +217,11 @@ impl Simulation {
             if self.state.growths_here >= max_here {
                 self.state.outcome = Some(Outcome::Unstable);
             }
+        }
+        if !step.grown.is_empty() && split_specimen(&self.state.cracks) {
+            // a chain of cracks from boundary to boundary: the specimen
+            // has failed, whether or not contact still holds its pieces
+            self.state.outcome = Some(Outcome::Through);
         }
         if self.state.outcome.is_none()
             && self.state.cracks.iter().all(|c| c.free_tips().count() == 0)

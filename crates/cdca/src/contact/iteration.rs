@@ -19,6 +19,7 @@ use crate::discretisation::dofs::FIXED;
 use crate::discretisation::xfem::Xfem;
 use crate::error::SolveError;
 use crate::geometry::cracks::Crack;
+use crate::scene::SolverSpec;
 use crate::solvers::linear::{LinearInfo, LinearSolver};
 use crate::solvers::relaxation::{RelaxStatus, ResidualSample};
 
@@ -42,10 +43,13 @@ impl ContactParams {
 }
 
 impl Default for ContactParams {
+    /// The scene file's defaults (`solver.contact_tolerance`,
+    /// `solver.max_contact_iterations`), four flips.
     fn default() -> Self {
+        let s = SolverSpec::default();
         Self {
-            tolerance: 1e-8,
-            max_iterations: 100,
+            tolerance: s.contact_tolerance,
+            max_iterations: s.max_contact_iterations,
             max_flips: 4,
         }
     }

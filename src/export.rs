@@ -4,6 +4,7 @@
 
 use std::fmt::Write as _;
 
+use cdca::fracture::rock::RockStrength;
 use cdca::report::{GrowthStepReport, Mode};
 use cdca::scene::SceneFile;
 
@@ -29,20 +30,22 @@ fn mode_name(mode: Mode) -> &'static str {
 }
 
 /// One row per growth step and free tip: SIFs, the criterion's decision,
-/// whether the tip grew, contact counts and solver effort.
+/// whether the tip grew, contact counts, solver effort and the intact
+/// rock's utilisation of its strength.
 pub fn history_csv(history: &[GrowthStepReport]) -> String {
     let mut out = String::from(
-        "step,load_factor,crack,tip,x_m,y_m,k1_pa_sqrt_m,k2_pa_sqrt_m,t_stress_pa,mode,angle_deg,grew,open,stick,slip,solver_iterations,seconds,converged\n",
+        "step,load_factor,crack,tip,x_m,y_m,k1_pa_sqrt_m,k2_pa_sqrt_m,t_stress_pa,mode,angle_deg,grew,open,stick,slip,solver_iterations,seconds,converged,intact_rock_utilisation\n",
     );
     for s in history {
         let tail = format!(
-            "{},{},{},{},{:e},{}",
+            "{},{},{},{},{:e},{},{}",
             s.contact.open,
             s.contact.stick,
             s.contact.slip,
             s.solver_iterations,
             s.seconds,
-            s.converged
+            s.converged,
+            s.intact_rock.utilisation
         );
         if s.tips.is_empty() {
             let _ = writeln!(out, "{},{},,,,,,,,,,,{tail}", s.step, s.load_factor);
@@ -71,7 +74,8 @@ pub fn history_csv(history: &[GrowthStepReport]) -> String {
 }
 
 /// The Q4 mesh with point data `displacement` (m) and cell data stresses
-/// (Pa) sampled at cell centres; values the solver cannot give are 0.
+/// (Pa) and the rock's strength used (–, see `RockStrength::utilisation`)
+/// sampled at cell centres; values the solver cannot give are 0.
 pub fn fields_vtu(
     scene: &SceneFile,
     displacement_at: impl Fn([f64; 2]) -> Option<[f64; 2]>,
@@ -102,7 +106,9 @@ pub fn fields_vtu(
         "sigma_1",
         "sigma_3",
         "von_mises",
+        "rock_strength_used",
     ];
+    let rock = RockStrength::of_material(&scene.material);
     let mut cell_data = vec![String::new(); names.len()];
     let mut connectivity = String::new();
     let mut offsets = String::new();
@@ -111,9 +117,10 @@ pub fn fields_vtu(
             let s = stress_at([(i as f64 + 0.5) * dx, (j as f64 + 0.5) * dy]).unwrap_or([0.0; 3]);
             let (c, r) = (0.5 * (s[0] + s[1]), (0.5 * (s[0] - s[1])).hypot(s[2]));
             let vm = von_mises(s, scene.material.plane, scene.material.poisson);
-            for (out, v) in cell_data
-                .iter_mut()
-                .zip([s[0], s[1], s[2], c + r, c - r, vm])
+            for (out, v) in
+                cell_data
+                    .iter_mut()
+                    .zip([s[0], s[1], s[2], c + r, c - r, vm, rock.utilisation(s)])
             {
                 let _ = writeln!(out, "{v:e}");
             }
@@ -224,7 +231,7 @@ mod tests {
         scene.mesh.ny = 2;
         let vtu = fields_vtu(&scene, |p| Some([p[0], 0.0]), |_| Some([-1.0, -2.0, 0.0]));
         assert!(vtu.contains("NumberOfPoints=\"12\" NumberOfCells=\"6\""));
-        assert_eq!(vtu.matches("Name=").count(), 1 + 6 + 3);
+        assert_eq!(vtu.matches("Name=").count(), 1 + 7 + 3);
         // the last cell's connectivity is 6 7 11 10
         assert!(vtu.contains("6 7 11 10\n"));
         assert!(vtu.trim_end().ends_with("</VTKFile>"));

@@ -3,7 +3,8 @@
 //! (the field task) so that sampling never blows the frame budget.
 
 use cdca::Simulation;
-use cdca::scene::Plane;
+use cdca::fracture::rock::RockStrength;
+use cdca::scene::{Material, Plane};
 use serde::{Deserialize, Serialize};
 use web_time::Instant;
 
@@ -20,11 +21,13 @@ pub enum FieldKind {
     #[default]
     Sigma3,
     VonMises,
+    /// The rock's Mohr–Coulomb utilisation (≥ 1: the rock fails there).
+    Strength,
     Displacement,
 }
 
 impl FieldKind {
-    pub const ALL: [Self; 8] = [
+    pub const ALL: [Self; 9] = [
         Self::None,
         Self::SigmaXx,
         Self::SigmaYy,
@@ -32,6 +35,7 @@ impl FieldKind {
         Self::Sigma1,
         Self::Sigma3,
         Self::VonMises,
+        Self::Strength,
         Self::Displacement,
     ];
 
@@ -44,6 +48,7 @@ impl FieldKind {
             Self::Sigma1 => "σ_1 (major)",
             Self::Sigma3 => "σ_3 (minor)",
             Self::VonMises => "von Mises",
+            Self::Strength => "Strength used",
             Self::Displacement => "|u|",
         }
     }
@@ -52,12 +57,14 @@ impl FieldKind {
     pub fn unit(self) -> (&'static str, f64) {
         match self {
             Self::Displacement => ("mm", 1e3),
+            Self::Strength => ("–", 1.0),
             _ => ("MPa", 1e-6),
         }
     }
 
-    /// The scalar at one sample, SI (Pa or m).
-    pub fn value(self, s: &Sample, plane: Plane, poisson: f64) -> f64 {
+    /// The scalar at one sample, SI (Pa or m; the strength used as a
+    /// fraction, see [`RockStrength::utilisation`]).
+    pub fn value(self, s: &Sample, m: &Material) -> f64 {
         let [sx, sy, txy] = s.stress;
         let centre = 0.5 * (sx + sy);
         let radius = (0.5 * (sx - sy)).hypot(txy);
@@ -68,7 +75,8 @@ impl FieldKind {
             Self::TauXy => txy,
             Self::Sigma1 => centre + radius,
             Self::Sigma3 => centre - radius,
-            Self::VonMises => von_mises(s.stress, plane, poisson),
+            Self::VonMises => von_mises(s.stress, m.plane, m.poisson),
+            Self::Strength => RockStrength::of_material(m).utilisation(s.stress),
             Self::Displacement => {
                 let mean = s
                     .corner_disp
@@ -258,6 +266,20 @@ pub fn value_range(values: &[f64], clip: bool) -> Option<(f64, f64)> {
 mod tests {
     use super::*;
 
+    /// Plane stress, ν = 0.25, c = 15 MPa, φ = 30°: σ_c = 51.96 MPa.
+    fn rock() -> Material {
+        Material {
+            young: 50e9,
+            poisson: 0.25,
+            plane: Plane::Stress,
+            cohesion: 15e6,
+            friction_angle_deg: 30.0,
+            k_ic: 1e6,
+            k_iic: 2e6,
+            tensile_strength: None,
+        }
+    }
+
     fn at(stress: [f64; 3]) -> Sample {
         Sample {
             stress,
@@ -268,8 +290,8 @@ mod tests {
     #[test]
     fn principal_stresses_of_pure_shear_are_plus_and_minus_tau() {
         let s = at([0.0, 0.0, 5e6]);
-        assert!((FieldKind::Sigma1.value(&s, Plane::Stress, 0.25) - 5e6).abs() < 1e-6);
-        assert!((FieldKind::Sigma3.value(&s, Plane::Stress, 0.25) + 5e6).abs() < 1e-6);
+        assert!((FieldKind::Sigma1.value(&s, &rock()) - 5e6).abs() < 1e-6);
+        assert!((FieldKind::Sigma3.value(&s, &rock()) + 5e6).abs() < 1e-6);
     }
 
     #[test]
@@ -279,10 +301,15 @@ mod tests {
 
     #[test]
     fn displacement_magnitude_is_the_corner_mean() {
-        assert!(
-            (FieldKind::Displacement.value(&at([0.0; 3]), Plane::Stress, 0.25) - 5e-3).abs()
-                < 1e-12
-        );
+        assert!((FieldKind::Displacement.value(&at([0.0; 3]), &rock()) - 5e-3).abs() < 1e-12);
+    }
+
+    /// Uniaxial compression at σ_c uses the whole strength.
+    #[test]
+    fn strength_used_is_one_at_the_unconfined_strength() {
+        let ucs = 2.0 * 15e6 * 30f64.to_radians().cos() / (1.0 - 30f64.to_radians().sin());
+        let u = FieldKind::Strength.value(&at([0.0, -ucs, 0.0]), &rock());
+        assert!((u - 1.0).abs() < 1e-12, "{u}");
     }
 
     #[test]

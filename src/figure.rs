@@ -19,6 +19,10 @@ pub enum Style {
     Dashed,
     /// Markers only (one value per parameter).
     Markers,
+    /// A dotted link between two values of another series across x where
+    /// that series has none (a tip that did not grow for some steps):
+    /// drawn, but neither in the legend nor in the exported numbers.
+    Gap,
 }
 
 /// One named series.
@@ -114,6 +118,19 @@ pub fn tick_label(kind: YTicks, value: f64, step: f64) -> String {
 }
 
 impl Figure {
+    /// The legend's entries: each series name once (a series drawn in
+    /// pieces, broken where it has no value, repeats its name and colour),
+    /// gaps left out.
+    pub fn legend(&self) -> impl Iterator<Item = &Series> {
+        self.series
+            .iter()
+            .enumerate()
+            .filter(|(i, s)| {
+                s.style != Style::Gap && !self.series[..*i].iter().any(|t| t.name == s.name)
+            })
+            .map(|(_, s)| s)
+    }
+
     /// The series as CSV, one row per point: `series,x,y` with the axis
     /// titles (and units) in the header; log axes are written as values.
     pub fn to_csv(&self) -> String {
@@ -122,7 +139,7 @@ impl Figure {
             quote(&self.x_label),
             quote(&self.y_label.replace(", log", ""))
         );
-        for s in &self.series {
+        for s in self.series.iter().filter(|s| s.style != Style::Gap) {
             for p in &s.points {
                 let y = if self.y_ticks == YTicks::Log {
                     10f64.powf(p[1])
@@ -215,10 +232,10 @@ impl Figure {
                 .collect();
             if s.style != Style::Markers && at.len() > 1 {
                 let path: Vec<String> = at.iter().map(|(x, y)| format!("{x:.1},{y:.1}")).collect();
-                let dash = if s.style == Style::Dashed {
-                    " stroke-dasharray=\"6 4\""
-                } else {
-                    ""
+                let dash = match s.style {
+                    Style::Dashed => " stroke-dasharray=\"6 4\"",
+                    Style::Gap => " stroke-dasharray=\"1.5 4\"",
+                    _ => "",
                 };
                 let _ = writeln!(
                     svg,
@@ -256,8 +273,7 @@ impl Figure {
             );
         }
         let legend = self
-            .series
-            .iter()
+            .legend()
             .map(|s| (s.name.as_str(), s.colour))
             .chain(self.vlines.iter().map(|v| (v.0.as_str(), v.2)));
         for (k, (name, colour)) in legend.enumerate() {

@@ -92,20 +92,33 @@ fn per_tip(
     series
 }
 
+/// One series per (crack, end), drawn in pieces of consecutive steps: a
+/// solid line joins two values only when no step lies between them, and a
+/// dotted [`Style::Gap`] links a piece to the next across steps in which
+/// the tip did not grow.
 fn step_series(
     series: BTreeMap<(usize, usize, u8), Vec<[f64; 2]>>,
     name: impl Fn((usize, usize, u8)) -> String,
 ) -> Vec<Series> {
-    series
-        .into_iter()
-        .enumerate()
-        .map(|(i, (key, points))| Series {
-            name: name(key),
+    let mut out = Vec::new();
+    for (i, (key, points)) in series.into_iter().enumerate() {
+        let name = name(key);
+        let piece = |style, points: Vec<[f64; 2]>| Series {
+            name: name.clone(),
             colour: colour(i),
-            style: Style::LineAndMarkers,
+            style,
             points,
-        })
-        .collect()
+        };
+        let mut last: Option<[f64; 2]> = None;
+        for run in points.chunk_by(|a, b| b[0] - a[0] <= 1.0) {
+            if let Some(end) = last {
+                out.push(piece(Style::Gap, vec![end, run[0]]));
+            }
+            out.push(piece(Style::LineAndMarkers, run.to_vec()));
+            last = run.last().copied();
+        }
+    }
+    out
 }
 
 fn sifs(view: &SolutionView) -> Option<Figure> {
@@ -157,7 +170,8 @@ fn angles(view: &SolutionView) -> Option<Figure> {
 /// load can jump there: one whose wing ran to the specimen's edge (the last
 /// ligament, next to a support or the loaded side, needs a higher load),
 /// and one after which fewer tips are free (a wing left the specimen or
-/// ended on a crack).
+/// ended on a crack). Beside it, dashed, the load factor at which the rock
+/// away from the cracks reaches its own strength.
 fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure> {
     let h = &view.history;
     if h.is_empty() {
@@ -190,16 +204,39 @@ fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure>
                 ),
             }),
     );
+    let mut series = vec![Series {
+        name: "λ of each growth step".to_owned(),
+        colour: colour(0),
+        style: Style::LineAndMarkers,
+        points: h.iter().map(point).collect(),
+    }];
+    // u is linear in the load: the rock fails at λ / u
+    let rock: Vec<[f64; 2]> = h
+        .iter()
+        .filter(|s| s.intact_rock.utilisation > 0.0)
+        .map(|s| {
+            [
+                s.crack_length * units::MM_PER_M,
+                s.load_factor / s.intact_rock.utilisation,
+            ]
+        })
+        .collect();
+    if let Some(s) = h.iter().find(|s| s.intact_rock.ucs > 0.0) {
+        series.push(Series {
+            name: format!(
+                "λ at which the intact rock reaches its strength (σ_c = {:.1} MPa)",
+                s.intact_rock.ucs / units::PA_PER_MPA
+            ),
+            colour: colour(3),
+            style: Style::Dashed,
+            points: rock,
+        });
+    }
     Some(Figure {
         id: "load_factor".to_owned(),
         x_label: "total crack length [mm]".to_owned(),
         y_label: "load factor λ [–]".to_owned(),
-        series: vec![Series {
-            name: "λ of each growth step".to_owned(),
-            colour: colour(0),
-            style: Style::LineAndMarkers,
-            points: h.iter().map(point).collect(),
-        }],
+        series,
         notes,
         include_y: vec![0.0],
         ..Figure::default()
@@ -374,5 +411,53 @@ mod tests {
             load.notes[1].text
         );
         assert!(figures(PlotTab::ResidualBySweep, &view, None, None, SIZE).is_empty());
+    }
+
+    /// A tip that did not grow for some steps has its angle line dotted
+    /// across them (one legend entry, each value exported once), and the
+    /// load-factor plot shows the load at which the intact rock reaches its
+    /// strength, λ / u.
+    #[test]
+    fn angle_lines_break_at_gaps_and_the_rock_strength_is_drawn() {
+        let mut history = vec![
+            step(1, 0.5, 2, 70.0),
+            step(2, 0.6, 2, 60.0),
+            step(5, 0.8, 2, 20.0),
+        ];
+        for (s, u) in history.iter_mut().zip([0.625, 0.75, 1.25]) {
+            s.intact_rock = cdca::report::IntactRockReport {
+                utilisation: u,
+                failed_fraction: 0.0,
+                ucs: 80e6,
+            };
+        }
+        let view = SolutionView {
+            history,
+            ..SolutionView::default()
+        };
+        let angles = &figures(PlotTab::Angles, &view, None, None, SIZE)[0];
+        let pieces: Vec<(Style, &Vec<[f64; 2]>)> =
+            angles.series.iter().map(|s| (s.style, &s.points)).collect();
+        assert_eq!(
+            pieces,
+            vec![
+                (Style::LineAndMarkers, &vec![[1.0, 70.0], [2.0, 60.0]]),
+                (Style::Gap, &vec![[2.0, 60.0], [5.0, 20.0]]),
+                (Style::LineAndMarkers, &vec![[5.0, 20.0]]),
+            ]
+        );
+        assert_eq!(angles.legend().count(), 1);
+        // the numbers exported: each growth once, the gap left out
+        assert_eq!(angles.to_csv().lines().count(), 1 + 3);
+        let load = &figures(PlotTab::LoadFactor, &view, None, None, SIZE)[0];
+        let rock = &load.series[1];
+        assert_eq!(
+            rock.name,
+            "λ at which the intact rock reaches its strength (σ_c = 80.0 MPa)"
+        );
+        for (p, want) in rock.points.iter().zip([0.8, 0.8, 0.64]) {
+            assert!((p[1] - want).abs() < 1e-12, "λ = {} against {want}", p[1]);
+        }
+        assert_eq!(rock.points.len(), 3);
     }
 }

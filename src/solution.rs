@@ -3,7 +3,7 @@
 //! copy, so panels and the canvas never call into the solver; the runner
 //! refreshes it after each piece of solver work.
 
-use cdca::report::{GrowthStepReport, Outcome, TipReport};
+use cdca::report::{GrowthStepReport, IntactRockReport, Outcome, TipReport};
 use cdca::{ContactPointView, RelaxStatus, ResidualSample, Simulation};
 use egui_plot::PlotPoint;
 
@@ -45,6 +45,8 @@ pub struct SolutionView {
     /// stiffness against a piece's rigid motion), and the field shown is
     /// the last solved state, at the last step's load factor.
     pub split: bool,
+    /// The rock away from the cracks against its strength, when solved.
+    pub intact_rock: Option<IntactRockReport>,
 }
 
 impl SolutionView {
@@ -73,6 +75,7 @@ impl SolutionView {
             PlotPoint::new(s.iteration as f64, log(s.residual))
         });
         self.residual_by_time = decimate(samples, |s| PlotPoint::new(s.seconds, log(s.residual)));
+        self.intact_rock = if solved { sim.intact_rock() } else { None };
         if solved {
             self.tips = sim.tips().to_vec();
         } else {
@@ -94,6 +97,7 @@ impl SolutionView {
         self.live = false;
         self.tips.clear();
         self.contact.clear();
+        self.intact_rock = None;
     }
 
     /// A displacement field can be sampled: a solution, or the iterate of

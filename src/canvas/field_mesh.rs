@@ -2,7 +2,7 @@
 //! deformed positions), cached until the samples or the settings change,
 //! and the legend.
 
-use cdca::scene::Plane;
+use cdca::scene::Material;
 use egui::{Align2, Color32, FontId, Mesh, Painter, Pos2, Rect, Stroke, Vec2, pos2, vec2};
 
 use super::view::ViewTransform;
@@ -31,13 +31,13 @@ pub struct FieldMesh {
 const PLAIN: Color32 = Color32::from_gray(150);
 
 impl FieldMesh {
-    pub fn build(key: MeshKey, samples: &FieldSamples, plane: Plane, poisson: f64) -> Self {
+    pub fn build(key: MeshKey, samples: &FieldSamples, material: &Material) -> Self {
         let values: Vec<f64> = samples
             .samples
             .iter()
             .map(|s| {
                 if s.stress[0].is_finite() {
-                    key.kind.value(s, plane, poisson)
+                    key.kind.value(s, material)
                 } else {
                     f64::NAN
                 }

@@ -296,12 +296,7 @@ impl Canvas {
                 clip: s.clip_range,
             };
             if self.mesh.as_ref().is_none_or(|m| m.key != key) {
-                self.mesh = Some(FieldMesh::build(
-                    key,
-                    samples,
-                    scene.material.plane,
-                    scene.material.poisson,
-                ));
+                self.mesh = Some(FieldMesh::build(key, samples, &scene.material));
             }
             if let Some(mesh) = &self.mesh {
                 mesh.paint(painter, &view);

@@ -136,7 +136,15 @@ pub fn toolbar_ui(ui: &mut Ui, v: &AppView, state: &mut ViewState, cmds: &mut Ve
             .selected_text(s.field.label())
             .show_ui(ui, |ui| {
                 for k in FieldKind::ALL {
-                    ui.selectable_value(&mut s.field, k, k.label());
+                    let item = ui.selectable_value(&mut s.field, k, k.label());
+                    if k == FieldKind::Strength {
+                        item.on_hover_text(
+                            "u = max((σ1 − N_φ σ3)/σ_c, −σ3/σ_t) with the principal \
+                             compressions σ1 ≥ σ3: Mohr–Coulomb with a tension cut-off from \
+                             the rock's c, φ and σ_t. u ≥ 1 where the uncracked rock fails; \
+                             the tip criterion does not check it.",
+                        );
+                    }
                 }
             });
         ui.checkbox(&mut s.show_mesh, "Mesh");

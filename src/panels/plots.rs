@@ -94,7 +94,7 @@ fn spacer(kind: YTicks, min_step: f64) -> impl Fn(GridInput) -> Vec<egui_plot::G
 /// The legend above the data and the export buttons, then the plot.
 fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut Vec<Command>) {
     ui.horizontal_wrapped(|ui| {
-        for s in &fig.series {
+        for s in fig.legend() {
             swatch(ui, s.colour, Some(s.style));
             ui.label(&s.name);
         }
@@ -167,6 +167,11 @@ fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut V
                 Style::Markers => {
                     plot.points(Points::new(&s.name, pts()).color(s.colour).radius(4.0));
                 }
+                Style::Gap => plot.line(
+                    Line::new(&s.name, pts())
+                        .color(s.colour)
+                        .style(LineStyle::dotted_loose()),
+                ),
             }
         }
         for (name, x, colour) in &fig.vlines {
@@ -199,7 +204,7 @@ fn swatch(ui: &mut Ui, colour: Color32, style: Option<Style>) {
         Some(Style::Markers) => {
             p.circle_filled(c, 4.0, colour);
         }
-        Some(Style::Dashed) => {
+        Some(Style::Dashed | Style::Gap) => {
             for k in 0..3 {
                 let x = l.x + 7.0 * k as f32;
                 p.line_segment(

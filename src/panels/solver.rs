@@ -349,6 +349,9 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         ui.label("Load factor λ");
         ui.label(format!("{:.3}", view.load_factor));
         ui.end_row();
+        if let Some(r) = view.intact_rock {
+            intact_rock_row(ui, &r);
+        }
         if let Some(o) = view.outcome {
             ui.label("Outcome");
             let text = format!("{o:?}").to_lowercase();
@@ -373,6 +376,31 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
             ui.end_row();
         }
     });
+}
+
+/// The rock away from the cracks against its own strength: its median
+/// utilisation, in the warning colour once it has failed there.
+fn intact_rock_row(ui: &mut Ui, r: &cdca::report::IntactRockReport) {
+    let why = format!(
+        "Median over the elements no crack touches of u = max((σ1 − N_φ σ3)/σ_c, −σ3/σ_t), \
+         Mohr–Coulomb with a tension cut-off from the rock's c, φ and σ_t \
+         (σ_c = {:.1} MPa). u ≥ 1: the uncracked rock would fail there. The crack-tip \
+         criterion does not check it; growth goes on.",
+        r.ucs / units::PA_PER_MPA
+    );
+    ui.label("Intact rock").on_hover_text(&why);
+    let text = format!(
+        "{:.2} × strength, {:.0}% failed",
+        r.utilisation,
+        100.0 * r.failed_fraction
+    );
+    if r.utilisation >= 1.0 {
+        ui.colored_label(ui.visuals().warn_fg_color, text)
+    } else {
+        ui.label(text)
+    }
+    .on_hover_text(why);
+    ui.end_row();
 }
 
 /// The growth run's progress line: step, λ, sweeps and residual of the

@@ -29,6 +29,21 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         write_csv(dir, &report)?;
     }
     output::print_json(&report)?;
+    if let Some(s) = report
+        .steps
+        .iter()
+        .find(|s| s.intact_rock.utilisation >= 1.0)
+    {
+        eprintln!(
+            "cdca: note: from step {} (λ = {:.3}) the rock away from the cracks is past its \
+             Mohr–Coulomb strength (median utilisation {:.2}, σ_c = {:.1} MPa); the tip \
+             criterion does not check it, so growth went on",
+            s.step,
+            s.load_factor,
+            s.intact_rock.utilisation,
+            s.intact_rock.ucs / 1e6
+        );
+    }
     // the report is printed either way; growth stopped on an unconverged
     // solve exits 1, on an error with that error's code
     if let Some(e) = failed {
@@ -97,7 +112,9 @@ fn write_csv(dir: &Path, report: &GrowReport) -> Result<(), CliError> {
 
 /// One row per grown tip per step.
 fn history_csv(steps: &[GrowthStepReport]) -> String {
-    let mut csv = String::from("step,load_factor,crack,tip,x,y,mode,angle_deg,k1,k2\n");
+    let mut csv = String::from(
+        "step,load_factor,crack,tip,x,y,mode,angle_deg,k1,k2,intact_rock_utilisation\n",
+    );
     for step in steps {
         for g in &step.grown {
             let mode = match g.mode {
@@ -107,8 +124,17 @@ fn history_csv(steps: &[GrowthStepReport]) -> String {
             };
             let _ = writeln!(
                 csv,
-                "{},{},{},{},{},{},{mode},{},{},{}",
-                step.step, step.load_factor, g.crack, g.tip, g.x, g.y, g.angle_deg, g.k1, g.k2
+                "{},{},{},{},{},{},{mode},{},{},{},{}",
+                step.step,
+                step.load_factor,
+                g.crack,
+                g.tip,
+                g.x,
+                g.y,
+                g.angle_deg,
+                g.k1,
+                g.k2,
+                step.intact_rock.utilisation
             );
         }
     }
@@ -158,9 +184,9 @@ mod tests {
         ];
         assert_eq!(
             history_csv(&steps),
-            "step,load_factor,crack,tip,x,y,mode,angle_deg,k1,k2\n\
-             1,0.2,0,1,0.125,0.5,tension,-70.5,1500000,-200000\n\
-             1,0.2,1,0,0.125,0.5,shear,-70.5,1500000,-200000\n"
+            "step,load_factor,crack,tip,x,y,mode,angle_deg,k1,k2,intact_rock_utilisation\n\
+             1,0.2,0,1,0.125,0.5,tension,-70.5,1500000,-200000,0\n\
+             1,0.2,1,0,0.125,0.5,shear,-70.5,1500000,-200000,0\n"
         );
     }
 

@@ -357,7 +357,37 @@ fn grow_prints_the_history_and_writes_matching_csv() {
         .map(|s| s["grown"].as_array().map_or(0, Vec::len))
         .sum();
     let history = std::fs::read_to_string(csv.join("history.csv")).expect("history.csv");
-    assert!(history.starts_with("step,load_factor,crack,tip,x,y,mode,angle_deg,k1,k2\n"));
+    assert!(history.starts_with(
+        "step,load_factor,crack,tip,x,y,mode,angle_deg,k1,k2,intact_rock_utilisation\n"
+    ));
+    // the rock away from the flaw carries about the far field, λ·100 MPa,
+    // against σ_c = 2c cos φ/(1 − sin φ) = 80.24 MPa (c = 15 MPa, φ = 49°):
+    // the median 1.2% above it at the first step, and up to 7.8% above as
+    // the wings take area from the load path (never below); stderr names
+    // the step where it passes 1
+    for (k, s) in steps.iter().enumerate() {
+        let lambda = s["load_factor"].as_f64().expect("λ");
+        let u = s["intact_rock"]["utilisation"]
+            .as_f64()
+            .expect("utilisation");
+        let excess = u / (lambda * 100e6 / 80.2386e6) - 1.0;
+        let limit = if k == 0 { 0.02 } else { 0.10 };
+        assert!(
+            (-0.005..limit).contains(&excess),
+            "step {}: u {u}, {excess:.4} above the far field",
+            s["step"]
+        );
+    }
+    let first = steps
+        .iter()
+        .find(|s| s["intact_rock"]["utilisation"].as_f64() >= Some(1.0))
+        .expect("the rock fails before the end");
+    assert!(
+        run.stderr
+            .contains(&format!("cdca: note: from step {} (λ = ", first["step"])),
+        "{}",
+        run.stderr
+    );
     assert_eq!(history.lines().count(), 1 + grown);
     let cracks = report["cracks"].as_array().expect("cracks");
     let vertices: usize = cracks

@@ -13,6 +13,27 @@ pub struct SolveReport {
     pub solver: SolverReport,
     pub contact: ContactReport,
     pub tips: Vec<TipReport>,
+    /// The rock away from the cracks against its own strength.
+    #[serde(default)]
+    pub intact_rock: IntactRockReport,
+}
+
+/// The rock away from the cracks (elements with no enriched node) against
+/// its Mohr–Coulomb strength with a tension cut-off: utilisation
+/// `u = max((σ1 − N_φ σ3)/σ_c, −σ3/σ_t, 0)` (principal compressions σ1 ≥ σ3,
+/// `N_φ = (1 + sin φ)/(1 − sin φ)`), `u ≥ 1` where the uncracked rock
+/// would fail. The tip criterion does not check it: growth goes on whatever
+/// it reads, and it says when the load has passed what the rock between
+/// the cracks could carry.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct IntactRockReport {
+    /// Area median of u (the far field's utilisation on a specimen whose
+    /// cracks are small).
+    pub utilisation: f64,
+    /// Area fraction of that rock with u ≥ 1.
+    pub failed_fraction: f64,
+    /// Unconfined compressive strength `σ_c = 2c cos φ/(1 − sin φ)`, Pa.
+    pub ucs: f64,
 }
 
 /// How the linear solves went (summed over contact iterations).
@@ -160,6 +181,10 @@ pub struct GrowthStepReport {
     /// (the reason growth stopped `not_converged`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub failure: Option<String>,
+    /// The rock away from the cracks against its strength at this step's
+    /// load.
+    #[serde(default)]
+    pub intact_rock: IntactRockReport,
 }
 
 /// A tip that grew in a step: its new position and how it grew.

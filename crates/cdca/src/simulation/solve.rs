@@ -7,8 +7,9 @@ use web_time::Instant;
 use super::state::Simulation;
 use crate::contact::law::{FaceState, counts};
 use crate::error::SolveError;
+use crate::fracture::rock::{RockStrength, intact_rock};
 use crate::fracture::tips::evaluate_tips;
-use crate::report::{ContactReport, SolveReport, SolverReport};
+use crate::report::{ContactReport, IntactRockReport, SolveReport, SolverReport};
 
 impl Simulation {
     /// Full solve (with contact) at the current load factor with the scene's
@@ -19,7 +20,10 @@ impl Simulation {
         self.start_relaxation();
         let start = Instant::now();
         while !self.relax(usize::MAX)?.finished {}
-        Ok(self.report(start.elapsed().as_secs_f64()))
+        Ok(SolveReport {
+            intact_rock: self.intact_rock().unwrap_or_default(),
+            ..self.report(start.elapsed().as_secs_f64())
+        })
     }
 
     /// The states the next contact iteration starts from: the guess left
@@ -46,7 +50,22 @@ impl Simulation {
         self.scratch.utilisation = e.utilisation;
     }
 
-    /// The report of the last solve (SPEC §11).
+    /// The rock away from the cracks against its strength at the solved
+    /// displacement; `None` while the state is not a solution of the
+    /// current cracks.
+    pub fn intact_rock(&self) -> Option<IntactRockReport> {
+        let x = &self.scratch.xfem;
+        (self.state.solved && self.state.u.len() == x.n_free()).then(|| {
+            intact_rock(
+                x,
+                &self.state.u,
+                &RockStrength::of_material(&self.model.scene.material),
+            )
+        })
+    }
+
+    /// The report of the last solve (SPEC §11), `intact_rock` left at its
+    /// default (see [`intact_rock`](Self::intact_rock)).
     pub fn report(&self, seconds: f64) -> SolveReport {
         let x = &self.scratch.xfem;
         let c = counts(&self.state.faces);
@@ -81,6 +100,8 @@ impl Simulation {
                 capped: info.capped,
             },
             tips: self.scratch.tips.clone(),
+            // filled where a solve is reported, not for every λ_cr trial
+            intact_rock: IntactRockReport::default(),
         }
     }
 }

@@ -163,14 +163,13 @@ pub fn classify_tips(cracks: &mut [Crack], width: f64, height: f64, tol: f64) {
 ///
 /// In the graph whose vertices are the cracks and the boundary, and whose
 /// edges are the non-free tips (a boundary tip joins its crack to the
-/// boundary, a junction its crack to the main one), that is a cycle
-/// through the boundary: one of the boundary's edges joins two vertices
-/// that the other edges join too. The tips must be classified
-/// ([`classify_tips`]). Cracks that cross away from their tips (no
-/// junction) are not seen.
+/// boundary, a junction its crack to the main one) and the crossings (two
+/// drawn cracks that cross away from their tips), that is a cycle through
+/// the boundary: one of the boundary's edges joins two vertices that the
+/// other edges join too. The tips must be classified ([`classify_tips`]).
 pub fn split_specimen(cracks: &[Crack]) -> bool {
     let boundary = cracks.len();
-    let edges: Vec<(usize, usize)> = tip_edges(cracks).collect();
+    let edges: Vec<(usize, usize)> = tip_edges(cracks).chain(crossings(cracks)).collect();
     edges.iter().enumerate().any(|(i, &(a, b))| {
         if b != boundary {
             return false;
@@ -195,6 +194,21 @@ fn tip_edges(cracks: &[Crack]) -> impl Iterator<Item = (usize, usize)> + '_ {
             TipKind::Boundary => Some((c, cracks.len())),
             TipKind::Junction { main } => Some((c, *main)),
         })
+    })
+}
+
+/// The pairs of cracks whose polylines cross or touch (a junction's pair
+/// too: an edge twice between two cracks makes no cycle through the
+/// boundary).
+fn crossings(cracks: &[Crack]) -> impl Iterator<Item = (usize, usize)> + '_ {
+    (0..cracks.len()).flat_map(move |i| {
+        (i + 1..cracks.len())
+            .filter(move |&j| {
+                cracks[j]
+                    .segments()
+                    .any(|(a, b)| first_crossing(&cracks[i], a, b).is_some())
+            })
+            .map(move |j| (i, j))
     })
 }
 
@@ -293,5 +307,39 @@ mod tests {
             crack([Boundary, Free]),
             crack([j(0), j(0)])
         ]));
+    }
+
+    /// Drawn cracks that cross away from their tips link like a junction:
+    /// two edge cracks from the left and the bottom side that cross cut the
+    /// corner off; crossing inside the specimen, or crossing with only one
+    /// of them on the boundary, they do not.
+    #[test]
+    fn crossing_cracks_split_the_specimen_when_they_join_two_edges() {
+        use TipKind::{Boundary, Free};
+        let segment = |a: [f64; 2], b: [f64; 2], tips| Crack {
+            points: vec![P2::new(a[0], a[1]), P2::new(b[0], b[1])],
+            tips,
+            ..crack([Free, Free])
+        };
+        // from the left side at y = 0.4 to (0.7, 0.45); from the bottom at
+        // x = 0.31 up to (0.33, 0.8): they cross near (0.31, 0.39)
+        let from_left = |tips| segment([0.0, 0.4], [0.7, 0.45], tips);
+        let from_bottom = |tips| segment([0.31, 0.0], [0.33, 0.8], tips);
+        assert!(split_specimen(&[
+            from_left([Boundary, Free]),
+            from_bottom([Boundary, Free])
+        ]));
+        assert!(!split_specimen(&[
+            from_left([Free, Free]),
+            from_bottom([Boundary, Free])
+        ]));
+        assert!(!split_specimen(&[
+            from_left([Free, Free]),
+            from_bottom([Free, Free])
+        ]));
+        // the same two, apart (the bottom one moved right past the other's
+        // end): no crossing, no split
+        let apart = segment([0.75, 0.0], [0.77, 0.8], [Boundary, Free]);
+        assert!(!split_specimen(&[from_left([Boundary, Free]), apart]));
     }
 }

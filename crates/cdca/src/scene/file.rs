@@ -351,7 +351,8 @@ pub struct SolverSpec {
     pub tolerance: f64,
     #[serde(default = "default_max_iterations")]
     pub max_iterations: usize,
-    /// Over-relaxation factor ω of the automaton, in (0, 2).
+    /// Over-relaxation factor ω of the automaton, in (0, 2) (with
+    /// `in_sweep` contact, 1 at the cells that carry face points).
     #[serde(default = "one")]
     pub omega: f64,
     #[serde(default)]

@@ -3,7 +3,7 @@
 //! field. Its state changes only through the methods the app's commands
 //! call, and through its run advancing.
 
-use cdca::scene::{SceneFile, SolverKind};
+use cdca::scene::{ContactUpdate, SceneFile, SolverKind};
 use cdca::{Scene, Simulation, SolveError};
 use web_time::Instant;
 
@@ -28,13 +28,17 @@ pub const LIVE_FIELD_INTERVAL: f64 = 0.15;
 /// The solver settings used in growth: iterative solvers at
 /// [`GROWTH_TOLERANCE`]; with `accelerate`, the plain automaton replaced by
 /// its multigrid-accelerated form (CG with the automaton's sweeps as
-/// smoother and a coarse-grid correction).
+/// smoother and a coarse-grid correction), unless the scene asks for the
+/// paper's in-sweep contact, a rule of the automaton's own cell visits.
 pub fn growth_solver(spec: &cdca::scene::SolverSpec, accelerate: bool) -> cdca::scene::SolverSpec {
     let mut spec = spec.clone();
     if spec.kind != SolverKind::Direct {
         spec.tolerance = GROWTH_TOLERANCE;
     }
-    if accelerate && spec.kind == SolverKind::Automaton {
+    if accelerate
+        && spec.kind == SolverKind::Automaton
+        && spec.contact_update == ContactUpdate::Outer
+    {
         spec.kind = SolverKind::Multigrid;
     }
     spec

@@ -254,6 +254,37 @@ fn panels_show_only_what_the_scene_can_use() {
     assert!(h.query_by_label("Over-relaxation ω").is_some());
 }
 
+/// The paper's in-sweep contact is offered with the automaton on a scene
+/// with cracks only; chosen, growth keeps the automaton (the multigrid
+/// swap cannot run it) and the acceleration option is hidden; with another
+/// solver the panel sets the outer loop back, so the scene stays valid.
+#[test]
+fn in_sweep_contact_is_offered_with_the_automaton_only() {
+    use cdca::scene::{ContactUpdate, SolverKind};
+    let mut h = harness(no_solver());
+    h.run();
+    assert!(
+        h.query_by_label("Contact update").is_none(),
+        "direct solver"
+    );
+    with_solver(&mut h, SolverKind::Automaton);
+    assert!(h.query_by_label("Contact update").is_some());
+    assert_eq!(h.state().growth_solver(), SolverKind::Multigrid);
+    edit_scene(&mut h, |s| s.solver.contact_update = ContactUpdate::InSweep);
+    h.run_steps(2);
+    assert_eq!(h.state().growth_solver(), SolverKind::Automaton);
+    assert!(
+        h.query_by_label("Accelerate growth (multigrid-CG)")
+            .is_none()
+    );
+    with_solver(&mut h, SolverKind::Cg);
+    assert_eq!(
+        h.state().scene().solver.contact_update,
+        ContactUpdate::Outer
+    );
+    assert!(h.query_by_label("Contact update").is_none());
+}
+
 /// The Growth section offers the control and only the settings it uses:
 /// the default scene grows to failure (a maximum load factor, no load
 /// steps); switched to a load ramp it shows load steps and growth per load

@@ -1,7 +1,7 @@
 //! Solver choice and settings, the run controls and the progress of the
 //! work in hand.
 
-use cdca::scene::{Ordering, SolverKind};
+use cdca::scene::{ContactUpdate, Ordering, SolverKind};
 use egui::{Grid, ProgressBar, Ui};
 
 use super::widgets::{EditTracker, choice, count_row, quantity_row};
@@ -82,6 +82,25 @@ fn settings_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
             );
         }
     });
+    if s.kind == SolverKind::Automaton && !v.scene.cracks.is_empty() {
+        choice(
+            ui,
+            "Contact update",
+            &mut s.contact_update,
+            &[
+                (ContactUpdate::Outer, "after each solve"),
+                (ContactUpdate::InSweep, "in the sweep (the paper's)"),
+            ],
+        )
+        .on_hover_text(
+            "When the crack faces' open/stick/slip states are updated: after each converged \
+             linear solve (an outer loop), or as the sweep passes each cell, the paper's rule \
+             (one pass of sweeps; the states change live on the canvas)",
+        );
+    } else if s.kind != SolverKind::Automaton {
+        // the in-sweep rule belongs to the automaton's cell visits
+        s.contact_update = ContactUpdate::Outer;
+    }
     if iterative {
         choice(
             ui,
@@ -213,7 +232,9 @@ fn pace_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
             }
         });
     }
-    if v.scene.solver.kind == SolverKind::Automaton {
+    if v.scene.solver.kind == SolverKind::Automaton
+        && v.scene.solver.contact_update == ContactUpdate::Outer
+    {
         let mut on = v.run.accelerate_growth;
         if ui
             .checkbox(&mut on, "Accelerate growth (multigrid-CG)")

@@ -284,7 +284,8 @@ fn race_figure(race: &Race) -> Figure {
 }
 
 /// The study's first growth against the parameter: the kink angle (one
-/// series per mode) and the critical load factor λ_cr.
+/// series per mode) and the critical load factor λ_cr, beside the load
+/// factor at which the rock away from the cracks reaches its strength.
 fn study_figures(study: &Study) -> Vec<Figure> {
     let (unit, factor) = param_unit(&study.path);
     let x_label = format!("{} [{unit}]", study.path);
@@ -316,6 +317,29 @@ fn study_figures(study: &Study) -> Vec<Figure> {
         .iter()
         .filter_map(|p| p.load_factor.map(|l| [p.value * factor, l]))
         .collect();
+    // u scales with the load: the intact rock fails at λ / u
+    let rock: Vec<[f64; 2]> = study
+        .points
+        .iter()
+        .filter_map(|p| {
+            let (l, r) = (p.load_factor?, p.intact_rock?);
+            (r.utilisation > 0.0).then(|| [p.value * factor, l / r.utilisation])
+        })
+        .collect();
+    let mut load_series = vec![Series {
+        name: "λ_cr of the first growth".to_owned(),
+        colour: colour(2),
+        style: Style::LineAndMarkers,
+        points: lambda,
+    }];
+    if !rock.is_empty() {
+        load_series.push(Series {
+            name: "λ at which the intact rock reaches its strength".to_owned(),
+            colour: colour(3),
+            style: Style::Dashed,
+            points: rock,
+        });
+    }
     vec![
         Figure {
             id: "study_angle".to_owned(),
@@ -330,12 +354,7 @@ fn study_figures(study: &Study) -> Vec<Figure> {
             id: "study_load".to_owned(),
             x_label,
             y_label: "critical load factor λ_cr [–]".to_owned(),
-            series: vec![Series {
-                name: "λ_cr of the first growth".to_owned(),
-                colour: colour(2),
-                style: Style::LineAndMarkers,
-                points: lambda,
-            }],
+            series: load_series,
             include_y: vec![0.0],
             ..Figure::default()
         },

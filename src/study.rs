@@ -6,7 +6,7 @@
 
 use std::fmt::Write as _;
 
-use cdca::report::{GrownTip, Mode, Outcome};
+use cdca::report::{GrownTip, IntactRockReport, Mode, Outcome};
 use cdca::{Scene, Simulation};
 use web_time::Instant;
 
@@ -92,6 +92,29 @@ pub struct StudyPoint {
     pub steps: usize,
     /// Why this value could not be simulated.
     pub error: Option<String>,
+    /// The rock away from the cracks at that step's load.
+    pub intact_rock: Option<IntactRockReport>,
+}
+
+impl StudyPoint {
+    /// A value whose run ended (`outcome`) or failed (`error`) before any
+    /// tip grew.
+    fn none_grew(
+        value: f64,
+        steps: usize,
+        outcome: Option<Outcome>,
+        error: Option<String>,
+    ) -> Self {
+        Self {
+            value,
+            load_factor: None,
+            grown: Vec::new(),
+            outcome,
+            steps,
+            error,
+            intact_rock: None,
+        }
+    }
 }
 
 /// A running or finished parameter study.
@@ -159,32 +182,18 @@ impl Study {
         Simulation::new(scene).map_err(|e| e.to_string())
     }
 
-    fn record(
-        &mut self,
-        value: f64,
-        load_factor: Option<f64>,
-        grown: Vec<GrownTip>,
-        outcome: Option<Outcome>,
-        steps: usize,
-        error: Option<String>,
-    ) {
+    fn record(&mut self, point: StudyPoint) {
         self.sim = None;
-        self.points.push(StudyPoint {
-            value,
-            load_factor,
-            grown,
-            outcome,
-            steps,
-            error,
-        });
+        self.points.push(point);
     }
 
     /// One row per grown tip (or one row saying none grew): the parameter
     /// in SI units, the load factor, the tip, its mode, kink angle (degrees
-    /// from the crack's direction) and SIFs (Pa·√m).
+    /// from the crack's direction), SIFs (Pa·√m) and the intact rock's
+    /// utilisation of its strength at that load.
     pub fn to_csv(&self) -> String {
         let mut out = format!(
-            "{},load_factor,crack,tip,mode,angle_deg,k1,k2,steps,outcome,error\n",
+            "{},load_factor,crack,tip,mode,angle_deg,k1,k2,steps,outcome,error,intact_rock_utilisation\n",
             self.path
         );
         for p in &self.points {
@@ -194,17 +203,21 @@ impl Study {
                 .unwrap_or_default();
             let error = p.error.as_deref().unwrap_or("").replace([',', '\n'], ";");
             let lambda = p.load_factor.map(|l| l.to_string()).unwrap_or_default();
+            let rock = p
+                .intact_rock
+                .map(|r| r.utilisation.to_string())
+                .unwrap_or_default();
             if p.grown.is_empty() {
                 let _ = writeln!(
                     out,
-                    "{},{lambda},,,none,,,,{},{outcome},{error}",
+                    "{},{lambda},,,none,,,,{},{outcome},{error},{rock}",
                     p.value, p.steps
                 );
             }
             for g in &p.grown {
                 let _ = writeln!(
                     out,
-                    "{},{lambda},{},{},{},{},{},{},{},{outcome},{error}",
+                    "{},{lambda},{},{},{},{},{},{},{},{outcome},{error},{rock}",
                     p.value,
                     g.crack,
                     g.tip,
@@ -234,7 +247,7 @@ impl Task for Study {
                 match self.build(value) {
                     Ok(sim) => self.sim = Some(sim),
                     Err(e) => {
-                        self.record(value, None, Vec::new(), None, 0, Some(e));
+                        self.record(StudyPoint::none_grew(value, 0, None, Some(e)));
                         continue;
                     }
                 }
@@ -246,16 +259,29 @@ impl Task for Study {
             match sim.advance_growth(n) {
                 Err(e) => {
                     let steps = sim.history().len();
-                    self.record(value, None, Vec::new(), None, steps, Some(e.to_string()));
+                    self.record(StudyPoint::none_grew(
+                        value,
+                        steps,
+                        None,
+                        Some(e.to_string()),
+                    ));
                 }
                 Ok(Some(step)) if !step.grown.is_empty() => {
                     let steps = sim.history().len();
-                    self.record(value, Some(step.load_factor), step.grown, None, steps, None);
+                    self.record(StudyPoint {
+                        value,
+                        load_factor: Some(step.load_factor),
+                        grown: step.grown,
+                        outcome: None,
+                        steps,
+                        error: None,
+                        intact_rock: Some(step.intact_rock),
+                    });
                 }
                 Ok(_) => {
                     if let Some(outcome) = sim.growth_finished() {
                         let steps = sim.history().len();
-                        self.record(value, None, Vec::new(), Some(outcome), steps, None);
+                        self.record(StudyPoint::none_grew(value, steps, Some(outcome), None));
                     }
                 }
             }

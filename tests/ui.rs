@@ -760,6 +760,12 @@ fn a_friction_study_records_the_first_growth_of_each_value() {
             assert_ne!(g.mode, cdca::report::Mode::None);
         }
         assert!(p.load_factor.is_some_and(|l| l > 0.0 && l <= 1.0 + 1e-12));
+        // the rock away from the flaw carries about the far field, λ_cr ×
+        // 100 MPa, against σ_c = 80.24 MPa (c = 15 MPa, φ = 49°): within 3%
+        let (lambda, rock) = (p.load_factor.unwrap_or_default(), p.intact_rock);
+        let u = rock.map_or(0.0, |r| r.utilisation);
+        let far = lambda * 100e6 / 80.2386e6;
+        assert!((u / far - 1.0).abs() < 0.03, "u {u} against {far}");
     }
     assert!(study.to_csv().lines().count() >= 3);
     // the table beside the plots shows each measured value: parameter,
@@ -786,6 +792,12 @@ fn a_friction_study_records_the_first_growth_of_each_value() {
         }
     }
     assert!(h.query_by_label("λ_cr [–]").is_some());
+    assert!(h.query_by_label("u [–]").is_some());
+    assert!(
+        h.query_by_label("λ at which the intact rock reaches its strength")
+            .is_some(),
+        "the λ_cr plot's legend names the rock's line"
+    );
 }
 
 /// A relaxation stopped at its cap (the automaton with at most 50 sweeps,

@@ -308,13 +308,14 @@ fn study_ui(
     });
 }
 
-/// The measured values: parameter, λ_cr, first kink angle and mode.
+/// The measured values: parameter, λ_cr, first kink angle and mode, and
+/// the intact rock's utilisation of its strength at λ_cr.
 fn study_table(ui: &mut Ui, study: &Study) {
     let (unit, factor) = param_unit(&study.path);
     egui::ScrollArea::vertical().show(ui, |ui| {
         egui::Grid::new("study table")
             .striped(true)
-            .num_columns(4)
+            .num_columns(5)
             .show(ui, |ui| {
                 ui.strong(format!(
                     "{} [{unit}]",
@@ -323,6 +324,10 @@ fn study_table(ui: &mut Ui, study: &Study) {
                 ui.strong("λ_cr [–]");
                 ui.strong("θ [°]");
                 ui.strong("mode");
+                ui.strong("u [–]").on_hover_text(
+                    "The rock away from the cracks at λ_cr: the median of its Mohr–Coulomb \
+                     utilisation (≥ 1: it would fail there; see the Intact rock status)",
+                );
                 ui.end_row();
                 for p in &study.points {
                     ui.label(units::compact(p.value * factor));
@@ -345,6 +350,20 @@ fn study_table(ui: &mut Ui, study: &Study) {
                                 format!("none ({o:?})").to_lowercase()
                             });
                             ui.label(why);
+                        }
+                    }
+                    match p.intact_rock {
+                        Some(r) if r.utilisation >= 1.0 => {
+                            ui.colored_label(
+                                ui.visuals().warn_fg_color,
+                                format!("{:.2}", r.utilisation),
+                            );
+                        }
+                        Some(r) => {
+                            ui.label(format!("{:.2}", r.utilisation));
+                        }
+                        None => {
+                            ui.label("–");
                         }
                     }
                     ui.end_row();

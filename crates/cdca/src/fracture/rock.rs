@@ -52,25 +52,33 @@ impl RockStrength {
 }
 
 /// The rock away from the cracks (elements with no enriched node) against
-/// its strength, from the stress at each element's centre. Every element
-/// has the same area, so the median over elements is the area median.
+/// its strength, from the stress at each element's centre; on a mesh so
+/// coarse that the enrichment covers every element, all elements. Every
+/// element has the same area, so the median over elements is the area
+/// median.
 pub fn intact_rock(xfem: &Xfem, u: &[f64], strength: &RockStrength) -> IntactRockReport {
     let field = Field { xfem, u };
     let mesh = &xfem.mesh;
-    let mut values: Vec<f64> = (0..mesh.element_count())
-        .filter(|&e| {
-            !mesh
-                .element_nodes(e)
-                .iter()
-                .any(|&n| xfem.dofs.is_enriched(n))
-        })
-        .map(|e| {
-            let (lo, hi) = mesh.element_box(e);
-            let centre = P2::new(0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y));
-            strength.utilisation(field.stress(&field.in_element(e, centre)))
-        })
-        .filter(|v| v.is_finite())
+    let at_centre = |e: usize| {
+        let (lo, hi) = mesh.element_box(e);
+        let centre = P2::new(0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y));
+        strength.utilisation(field.stress(&field.in_element(e, centre)))
+    };
+    let enriched = |e: usize| {
+        mesh.element_nodes(e)
+            .iter()
+            .any(|&n| xfem.dofs.is_enriched(n))
+    };
+    let all = 0..mesh.element_count();
+    let mut values: Vec<f64> = all
+        .clone()
+        .filter(|&e| !enriched(e))
+        .map(at_centre)
         .collect();
+    if values.is_empty() {
+        values = all.map(at_centre).collect();
+    }
+    values.retain(|v| v.is_finite());
     if values.is_empty() {
         return IntactRockReport {
             ucs: strength.ucs,

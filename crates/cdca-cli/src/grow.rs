@@ -34,15 +34,8 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         .iter()
         .find(|s| s.intact_rock.utilisation >= 1.0)
     {
-        eprintln!(
-            "cdca: note: from step {} (λ = {:.3}) the rock away from the cracks is past its \
-             Mohr–Coulomb strength (median utilisation {:.2}, σ_c = {:.1} MPa); the tip \
-             criterion does not check it, so growth went on",
-            s.step,
-            s.load_factor,
-            s.intact_rock.utilisation,
-            s.intact_rock.ucs / 1e6
-        );
+        let when = format!("from step {} (λ = {:.3})", s.step, s.load_factor);
+        output::note_intact_rock(&when, &s.intact_rock);
     }
     // the report is printed either way; growth stopped on an unconverged
     // solve exits 1, on an error with that error's code

@@ -2,6 +2,7 @@
 
 use std::io::Write;
 
+use cdca::report::IntactRockReport;
 use serde::Serialize;
 
 use crate::error::CliError;
@@ -15,4 +16,19 @@ pub fn print_json(value: &impl Serialize) -> Result<(), CliError> {
     writeln!(out)
         .and_then(|()| out.flush())
         .map_err(|e| failed(&e))
+}
+
+/// Notes on stderr that the rock away from the cracks is past its own
+/// strength `when` (e.g. "at full load"): the tip criterion does not check
+/// it, so a user reading only the cracks would not know.
+pub fn note_intact_rock(when: &str, r: &IntactRockReport) {
+    if r.utilisation >= 1.0 {
+        eprintln!(
+            "cdca: note: {when} the rock away from the cracks is past its Mohr–Coulomb \
+             strength (median utilisation {:.2}, σ_c = {:.1} MPa); the tip criterion does \
+             not check it",
+            r.utilisation,
+            r.ucs / 1e6
+        );
+    }
 }

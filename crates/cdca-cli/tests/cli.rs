@@ -341,6 +341,32 @@ fn solve_prints_the_report_of_spec_11() {
     }
 }
 
+/// `cdca solve` notes on stderr when the rock away from the cracks is past
+/// its strength: the default scene at full load (100 MPa against σ_c =
+/// 2c cos φ/(1 − sin φ) = 80.24 MPa, so u = 1.246 in the far field; the
+/// median 1.2% above it, within 3%), and says nothing on the centre crack
+/// under 1 MPa tension.
+#[test]
+fn solve_notes_an_intact_rock_past_its_strength() {
+    let path = scenes_dir().join("specimen_single_flaw.json");
+    let run = cdca(&["solve", path_str(&path)]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    let report: serde_json::Value = serde_json::from_str(&run.stdout).expect("stdout is JSON");
+    let u = report["intact_rock"]["utilisation"].as_f64().expect("u");
+    assert!((u / (100.0 / 80.2386) - 1.0).abs() < 0.03, "u {u}");
+    assert!(
+        run.stderr
+            .contains("cdca: note: at full load the rock away from the cracks"),
+        "{}",
+        run.stderr
+    );
+    let quiet = cdca(&[
+        "solve",
+        path_str(&scenes_dir().join("centre_crack_tension.json")),
+    ]);
+    assert!(!quiet.stderr.contains("note"), "{}", quiet.stderr);
+}
+
 #[test]
 fn grow_prints_the_history_and_writes_matching_csv() {
     let dir = temp_dir("grow");

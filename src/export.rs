@@ -45,7 +45,9 @@ pub fn history_csv(history: &[GrowthStepReport]) -> String {
             s.solver_iterations,
             s.seconds,
             s.converged,
-            s.intact_rock.utilisation
+            s.intact_rock
+                .map(|r| r.utilisation.to_string())
+                .unwrap_or_default()
         );
         if s.tips.is_empty() {
             let _ = writeln!(out, "{},{},,,,,,,,,,,{tail}", s.step, s.load_factor);
@@ -75,7 +77,8 @@ pub fn history_csv(history: &[GrowthStepReport]) -> String {
 
 /// The Q4 mesh with point data `displacement` (m) and cell data stresses
 /// (Pa) and the rock's strength used (–, see `RockStrength::utilisation`)
-/// sampled at cell centres; values the solver cannot give are 0.
+/// sampled at cell centres; values the solver cannot give are 0 (the
+/// strength used too, for a rock without cohesion).
 pub fn fields_vtu(
     scene: &SceneFile,
     displacement_at: impl Fn([f64; 2]) -> Option<[f64; 2]>,
@@ -109,6 +112,7 @@ pub fn fields_vtu(
         "rock_strength_used",
     ];
     let rock = RockStrength::of_material(&scene.material);
+    let used = |s: [f64; 3]| rock.map_or(0.0, |r| r.utilisation(s));
     let mut cell_data = vec![String::new(); names.len()];
     let mut connectivity = String::new();
     let mut offsets = String::new();
@@ -117,10 +121,9 @@ pub fn fields_vtu(
             let s = stress_at([(i as f64 + 0.5) * dx, (j as f64 + 0.5) * dy]).unwrap_or([0.0; 3]);
             let (c, r) = (0.5 * (s[0] + s[1]), (0.5 * (s[0] - s[1])).hypot(s[2]));
             let vm = von_mises(s, scene.material.plane, scene.material.poisson);
-            for (out, v) in
-                cell_data
-                    .iter_mut()
-                    .zip([s[0], s[1], s[2], c + r, c - r, vm, rock.utilisation(s)])
+            for (out, v) in cell_data
+                .iter_mut()
+                .zip([s[0], s[1], s[2], c + r, c - r, vm, used(s)])
             {
                 let _ = writeln!(out, "{v:e}");
             }

@@ -76,7 +76,9 @@ impl FieldKind {
             Self::Sigma1 => centre + radius,
             Self::Sigma3 => centre - radius,
             Self::VonMises => von_mises(s.stress, m.plane, m.poisson),
-            Self::Strength => RockStrength::of_material(m).utilisation(s.stress),
+            Self::Strength => {
+                RockStrength::of_material(m).map_or(f64::NAN, |r| r.utilisation(s.stress))
+            }
             Self::Displacement => {
                 let mean = s
                     .corner_disp

@@ -213,19 +213,16 @@ fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure>
     // u is linear in the load: the rock fails at λ / u
     let rock: Vec<[f64; 2]> = h
         .iter()
-        .filter(|s| s.intact_rock.utilisation > 0.0)
-        .map(|s| {
-            [
-                s.crack_length * units::MM_PER_M,
-                s.load_factor / s.intact_rock.utilisation,
-            ]
+        .filter_map(|s| {
+            let u = s.intact_rock?.utilisation;
+            (u > 0.0).then(|| [s.crack_length * units::MM_PER_M, s.load_factor / u])
         })
         .collect();
-    if let Some(s) = h.iter().find(|s| s.intact_rock.ucs > 0.0) {
+    if let Some(r) = h.iter().find_map(|s| s.intact_rock) {
         series.push(Series {
             name: format!(
                 "λ at which the intact rock reaches its strength (σ_c = {:.1} MPa)",
-                s.intact_rock.ucs / units::PA_PER_MPA
+                r.ucs / units::PA_PER_MPA
             ),
             colour: colour(3),
             style: Style::Dashed,
@@ -444,11 +441,11 @@ mod tests {
             step(5, 0.8, 2, 20.0),
         ];
         for (s, u) in history.iter_mut().zip([0.625, 0.75, 1.25]) {
-            s.intact_rock = cdca::report::IntactRockReport {
+            s.intact_rock = Some(cdca::report::IntactRockReport {
                 utilisation: u,
                 failed_fraction: 0.0,
                 ucs: 80e6,
-            };
+            });
         }
         let view = SolutionView {
             history,

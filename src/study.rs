@@ -275,7 +275,7 @@ impl Task for Study {
                         outcome: None,
                         steps,
                         error: None,
-                        intact_rock: Some(step.intact_rock),
+                        intact_rock: step.intact_rock,
                     });
                 }
                 Ok(_) => {

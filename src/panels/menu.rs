@@ -135,7 +135,13 @@ pub fn toolbar_ui(ui: &mut Ui, v: &AppView, state: &mut ViewState, cmds: &mut Ve
         egui::ComboBox::from_label("Field")
             .selected_text(s.field.label())
             .show_ui(ui, |ui| {
+                // a rock without cohesion has no strength to use
+                let has_strength =
+                    cdca::fracture::rock::RockStrength::of_material(&v.scene.material).is_some();
                 for k in FieldKind::ALL {
+                    if k == FieldKind::Strength && !has_strength {
+                        continue;
+                    }
                     let item = ui.selectable_value(&mut s.field, k, k.label());
                     if k == FieldKind::Strength {
                         item.on_hover_text(

@@ -32,10 +32,10 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     if let Some(s) = report
         .steps
         .iter()
-        .find(|s| s.intact_rock.utilisation >= 1.0)
+        .find(|s| s.intact_rock.is_some_and(|r| r.utilisation >= 1.0))
     {
         let when = format!("from step {} (λ = {:.3})", s.step, s.load_factor);
-        output::note_intact_rock(&when, &s.intact_rock);
+        output::note_intact_rock(&when, s.intact_rock.as_ref());
     }
     // the report is printed either way; growth stopped on an unconverged
     // solve exits 1, on an error with that error's code
@@ -127,7 +127,9 @@ fn history_csv(steps: &[GrowthStepReport]) -> String {
                 g.angle_deg,
                 g.k1,
                 g.k2,
-                step.intact_rock.utilisation
+                step.intact_rock
+                    .map(|r| r.utilisation.to_string())
+                    .unwrap_or_default()
             );
         }
     }
@@ -178,8 +180,8 @@ mod tests {
         assert_eq!(
             history_csv(&steps),
             "step,load_factor,crack,tip,x,y,mode,angle_deg,k1,k2,intact_rock_utilisation\n\
-             1,0.2,0,1,0.125,0.5,tension,-70.5,1500000,-200000,0\n\
-             1,0.2,1,0,0.125,0.5,shear,-70.5,1500000,-200000,0\n"
+             1,0.2,0,1,0.125,0.5,tension,-70.5,1500000,-200000,\n\
+             1,0.2,1,0,0.125,0.5,shear,-70.5,1500000,-200000,\n"
         );
     }
 

@@ -21,8 +21,8 @@ pub fn print_json(value: &impl Serialize) -> Result<(), CliError> {
 /// Notes on stderr that the rock away from the cracks is past its own
 /// strength `when` (e.g. "at full load"): the tip criterion does not check
 /// it, so a user reading only the cracks would not know.
-pub fn note_intact_rock(when: &str, r: &IntactRockReport) {
-    if r.utilisation >= 1.0 {
+pub fn note_intact_rock(when: &str, r: Option<&IntactRockReport>) {
+    if let Some(r) = r.filter(|r| r.utilisation >= 1.0) {
         eprintln!(
             "cdca: note: {when} the rock away from the cracks is past its Mohr–Coulomb \
              strength (median utilisation {:.2}, σ_c = {:.1} MPa); the tip criterion does \

@@ -21,7 +21,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     sim.set_load_factor(1.0);
     let report = sim.solve()?;
     output::print_json(&report)?;
-    output::note_intact_rock("at full load", &report.intact_rock);
+    output::note_intact_rock("at full load", report.intact_rock.as_ref());
     // the report is printed either way; an unconverged solve exits 1
     match report.failure() {
         Some(why) => Err(CliError::Failure(why)),

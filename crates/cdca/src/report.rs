@@ -13,9 +13,10 @@ pub struct SolveReport {
     pub solver: SolverReport,
     pub contact: ContactReport,
     pub tips: Vec<TipReport>,
-    /// The rock away from the cracks against its own strength.
-    #[serde(default)]
-    pub intact_rock: IntactRockReport,
+    /// The rock away from the cracks against its own strength (left out
+    /// for a rock without cohesion, see `RockStrength::of_material`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub intact_rock: Option<IntactRockReport>,
 }
 
 /// The rock away from the cracks (elements with no enriched node) against
@@ -182,9 +183,9 @@ pub struct GrowthStepReport {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub failure: Option<String>,
     /// The rock away from the cracks against its strength at this step's
-    /// load.
-    #[serde(default)]
-    pub intact_rock: IntactRockReport,
+    /// load (left out for a rock without cohesion).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub intact_rock: Option<IntactRockReport>,
 }
 
 /// A tip that grew in a step: its new position and how it grew.

@@ -171,7 +171,7 @@ fn intact_rock_utilisation_matches_the_closed_form() {
     ] {
         let mut s = plate(1.0, 1.0, 7, 9);
         tension_top_bottom(&mut s, load);
-        let r = solve(s).intact_rock;
+        let r = solve(s).intact_rock.expect("c > 0");
         assert!(rel(r.ucs, ucs) < 1e-12, "σ_c {}", r.ucs);
         assert!(
             rel(r.utilisation, want) < 1e-9,
@@ -183,7 +183,7 @@ fn intact_rock_utilisation_matches_the_closed_form() {
     let mut s = plate(1.0, 1.0, 20, 20);
     tension_top_bottom(&mut s, 3e6);
     s.cracks.push(centre_crack(0.513, 0.487, 0.11, 37.0));
-    let r = solve(s).intact_rock;
+    let r = solve(s).intact_rock.expect("c > 0");
     let far = 3e6 / st;
     assert!(
         rel(r.utilisation, far) < 0.015,
@@ -208,7 +208,21 @@ fn intact_rock_on_a_fully_enriched_coarse_mesh() {
         .push(CrackSpec::segment([0.437, 0.31], [0.437, 0.68]));
     let r = solve(s);
     assert!(r.enriched_dofs > 0);
-    let u = r.intact_rock.utilisation;
+    let u = r.intact_rock.expect("c > 0").utilisation;
     let st = 2.0 * 15e6 * phi.cos() / (1.0 + phi.sin());
     assert!(rel(u, 3e6 / st) < 0.02, "u {u} against {}", 3e6 / st);
+}
+
+/// A rock without cohesion (c = 0, σ_t given) has no unconfined strength:
+/// the report leaves `intact_rock` out rather than give a 0 or an infinity.
+#[test]
+fn intact_rock_is_left_out_for_a_rock_without_cohesion() {
+    let mut s = plate(1.0, 1.0, 7, 9);
+    tension_top_bottom(&mut s, 3e6);
+    s.material.cohesion = 0.0;
+    s.material.tensile_strength = Some(5e6);
+    let r = solve(s);
+    assert_eq!(r.intact_rock, None);
+    let json = serde_json::to_string(&r).expect("serialises");
+    assert!(!json.contains("intact_rock"), "{json}");
 }

@@ -24,13 +24,18 @@ pub struct RockStrength {
 }
 
 impl RockStrength {
-    pub fn of_material(m: &Material) -> Self {
+    /// The material's strength, or `None` for a rock without cohesion
+    /// (c = 0): its envelope passes through the origin, so scaling the load
+    /// brings a state to failure at once or never, and no utilisation can
+    /// be given.
+    pub fn of_material(m: &Material) -> Option<Self> {
         let (c, phi) = (m.cohesion, m.friction_angle_deg.to_radians());
-        Self {
+        let s = Self {
             ucs: 2.0 * c * phi.cos() / (1.0 - phi.sin()),
             n_phi: (1.0 + phi.sin()) / (1.0 - phi.sin()),
             tensile: m.tensile_strength.unwrap_or_else(|| tension_cutoff(c, phi)),
-        }
+        };
+        (s.ucs > 0.0 && s.tensile > 0.0).then_some(s)
     }
 
     /// Utilisation of the strength by the stress `[σxx, σyy, τxy]` (Pa,
@@ -101,8 +106,8 @@ mod tests {
     use crate::scene::Plane;
 
     /// c = 15 MPa, φ = 49°: the defaults of the bundled scenes.
-    fn rock() -> RockStrength {
-        let m = Material {
+    fn material() -> Material {
+        Material {
             young: 50e9,
             poisson: 0.25,
             plane: Plane::Strain,
@@ -111,8 +116,11 @@ mod tests {
             k_ic: 1e6,
             k_iic: 2e6,
             tensile_strength: None,
-        };
-        RockStrength::of_material(&m)
+        }
+    }
+
+    fn rock() -> RockStrength {
+        RockStrength::of_material(&material()).expect("c > 0")
     }
 
     /// Closed forms: uniaxial compression at σ_c, a triaxial state on the
@@ -148,6 +156,13 @@ mod tests {
         let u = r.utilisation(rotate(0.0, -0.5 * r.ucs));
         assert!((u - 0.5).abs() < 1e-12, "half σ_c: u = {u}");
         assert!((r.n_phi - 7.153).abs() < 1e-3, "N_φ = {}", r.n_phi);
+        // no cohesion: no unconfined strength, no utilisation
+        let cohesionless = Material {
+            cohesion: 0.0,
+            tensile_strength: Some(5e6),
+            ..material()
+        };
+        assert_eq!(RockStrength::of_material(&cohesionless), None);
         assert_eq!(r.utilisation(rotate(-0.2e8, -1e8)), 0.0);
     }
 }

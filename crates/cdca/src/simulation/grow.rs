@@ -196,7 +196,7 @@ impl Simulation {
             seconds: 0.0,
             crack_length: 0.0,
             tips: report.tips.clone(),
-            intact_rock: self.intact_rock().unwrap_or_default(),
+            intact_rock: self.intact_rock(),
         };
         if !step.converged {
             self.state.outcome = Some(Outcome::NotConverged);

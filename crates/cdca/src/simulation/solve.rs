@@ -21,7 +21,7 @@ impl Simulation {
         let start = Instant::now();
         while !self.relax(usize::MAX)?.finished {}
         Ok(SolveReport {
-            intact_rock: self.intact_rock().unwrap_or_default(),
+            intact_rock: self.intact_rock(),
             ..self.report(start.elapsed().as_secs_f64())
         })
     }
@@ -52,16 +52,12 @@ impl Simulation {
 
     /// The rock away from the cracks against its strength at the solved
     /// displacement; `None` while the state is not a solution of the
-    /// current cracks.
+    /// current cracks, or for a rock without cohesion.
     pub fn intact_rock(&self) -> Option<IntactRockReport> {
         let x = &self.scratch.xfem;
-        (self.state.solved && self.state.u.len() == x.n_free()).then(|| {
-            intact_rock(
-                x,
-                &self.state.u,
-                &RockStrength::of_material(&self.model.scene.material),
-            )
-        })
+        let strength = RockStrength::of_material(&self.model.scene.material)?;
+        (self.state.solved && self.state.u.len() == x.n_free())
+            .then(|| intact_rock(x, &self.state.u, &strength))
     }
 
     /// The report of the last solve (SPEC §11), `intact_rock` left at its
@@ -101,7 +97,7 @@ impl Simulation {
             },
             tips: self.scratch.tips.clone(),
             // filled where a solve is reported, not for every λ_cr trial
-            intact_rock: IntactRockReport::default(),
+            intact_rock: None,
         }
     }
 }

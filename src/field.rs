@@ -64,7 +64,7 @@ impl FieldKind {
 
     /// The scalar at one sample, SI (Pa or m; the strength used as a
     /// fraction, see [`RockStrength::utilisation`]).
-    pub fn value(self, s: &Sample, m: &Material) -> f64 {
+    pub fn value(self, s: &Sample, m: &Rock) -> f64 {
         let [sx, sy, txy] = s.stress;
         let centre = 0.5 * (sx + sy);
         let radius = (0.5 * (sx - sy)).hypot(txy);
@@ -76,9 +76,7 @@ impl FieldKind {
             Self::Sigma1 => centre + radius,
             Self::Sigma3 => centre - radius,
             Self::VonMises => von_mises(s.stress, m.plane, m.poisson),
-            Self::Strength => {
-                RockStrength::of_material(m).map_or(f64::NAN, |r| r.utilisation(s.stress))
-            }
+            Self::Strength => m.strength.map_or(f64::NAN, |r| r.utilisation(s.stress)),
             Self::Displacement => {
                 let mean = s
                     .corner_disp
@@ -86,6 +84,25 @@ impl FieldKind {
                     .fold([0.0; 2], |a, u| [a[0] + u[0] / 4.0, a[1] + u[1] / 4.0]);
                 mean[0].hypot(mean[1])
             }
+        }
+    }
+}
+
+/// What the scalars need of the material, worked out once per field.
+#[derive(Clone, Copy, Debug)]
+pub struct Rock {
+    pub plane: Plane,
+    pub poisson: f64,
+    /// `None` for a rock without cohesion.
+    pub strength: Option<RockStrength>,
+}
+
+impl Rock {
+    pub fn of(m: &Material) -> Self {
+        Self {
+            plane: m.plane,
+            poisson: m.poisson,
+            strength: RockStrength::of_material(m),
         }
     }
 }
@@ -269,7 +286,7 @@ mod tests {
     use super::*;
 
     /// Plane stress, ν = 0.25, c = 15 MPa, φ = 30°: σ_c = 51.96 MPa.
-    fn rock() -> Material {
+    fn material() -> Material {
         Material {
             young: 50e9,
             poisson: 0.25,
@@ -292,8 +309,8 @@ mod tests {
     #[test]
     fn principal_stresses_of_pure_shear_are_plus_and_minus_tau() {
         let s = at([0.0, 0.0, 5e6]);
-        assert!((FieldKind::Sigma1.value(&s, &rock()) - 5e6).abs() < 1e-6);
-        assert!((FieldKind::Sigma3.value(&s, &rock()) + 5e6).abs() < 1e-6);
+        assert!((FieldKind::Sigma1.value(&s, &Rock::of(&material())) - 5e6).abs() < 1e-6);
+        assert!((FieldKind::Sigma3.value(&s, &Rock::of(&material())) + 5e6).abs() < 1e-6);
     }
 
     #[test]
@@ -303,14 +320,17 @@ mod tests {
 
     #[test]
     fn displacement_magnitude_is_the_corner_mean() {
-        assert!((FieldKind::Displacement.value(&at([0.0; 3]), &rock()) - 5e-3).abs() < 1e-12);
+        assert!(
+            (FieldKind::Displacement.value(&at([0.0; 3]), &Rock::of(&material())) - 5e-3).abs()
+                < 1e-12
+        );
     }
 
     /// Uniaxial compression at σ_c uses the whole strength.
     #[test]
     fn strength_used_is_one_at_the_unconfined_strength() {
         let ucs = 2.0 * 15e6 * 30f64.to_radians().cos() / (1.0 - 30f64.to_radians().sin());
-        let u = FieldKind::Strength.value(&at([0.0, -ucs, 0.0]), &rock());
+        let u = FieldKind::Strength.value(&at([0.0, -ucs, 0.0]), &Rock::of(&material()));
         assert!((u - 1.0).abs() < 1e-12, "{u}");
     }
 

@@ -6,7 +6,7 @@ use cdca::scene::Material;
 use egui::{Align2, Color32, FontId, Mesh, Painter, Pos2, Rect, Stroke, Vec2, pos2, vec2};
 
 use super::view::ViewTransform;
-use crate::field::{FieldKey, FieldKind, FieldSamples, value_range};
+use crate::field::{FieldKey, FieldKind, FieldSamples, Rock, value_range};
 
 /// What a cached mesh was built from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -32,12 +32,13 @@ const PLAIN: Color32 = Color32::from_gray(150);
 
 impl FieldMesh {
     pub fn build(key: MeshKey, samples: &FieldSamples, material: &Material) -> Self {
+        let rock = Rock::of(material);
         let values: Vec<f64> = samples
             .samples
             .iter()
             .map(|s| {
                 if s.stress[0].is_finite() {
-                    key.kind.value(s, material)
+                    key.kind.value(s, &rock)
                 } else {
                     f64::NAN
                 }

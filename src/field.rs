@@ -285,17 +285,16 @@ pub fn value_range(values: &[f64], clip: bool) -> Option<(f64, f64)> {
 mod tests {
     use super::*;
 
-    /// Plane stress, ν = 0.25, c = 15 MPa, φ = 30°: σ_c = 51.96 MPa.
-    fn material() -> Material {
-        Material {
-            young: 50e9,
-            poisson: 0.25,
+    /// Plane stress, ν = 0.25, σ_c = 50 MPa, N_φ = 3, σ_t = 5 MPa.
+    fn rock() -> Rock {
+        Rock {
             plane: Plane::Stress,
-            cohesion: 15e6,
-            friction_angle_deg: 30.0,
-            k_ic: 1e6,
-            k_iic: 2e6,
-            tensile_strength: None,
+            poisson: 0.25,
+            strength: Some(RockStrength {
+                ucs: 50e6,
+                n_phi: 3.0,
+                tensile: 5e6,
+            }),
         }
     }
 
@@ -309,8 +308,8 @@ mod tests {
     #[test]
     fn principal_stresses_of_pure_shear_are_plus_and_minus_tau() {
         let s = at([0.0, 0.0, 5e6]);
-        assert!((FieldKind::Sigma1.value(&s, &Rock::of(&material())) - 5e6).abs() < 1e-6);
-        assert!((FieldKind::Sigma3.value(&s, &Rock::of(&material())) + 5e6).abs() < 1e-6);
+        assert!((FieldKind::Sigma1.value(&s, &rock()) - 5e6).abs() < 1e-6);
+        assert!((FieldKind::Sigma3.value(&s, &rock()) + 5e6).abs() < 1e-6);
     }
 
     #[test]
@@ -320,18 +319,24 @@ mod tests {
 
     #[test]
     fn displacement_magnitude_is_the_corner_mean() {
-        assert!(
-            (FieldKind::Displacement.value(&at([0.0; 3]), &Rock::of(&material())) - 5e-3).abs()
-                < 1e-12
-        );
+        assert!((FieldKind::Displacement.value(&at([0.0; 3]), &rock()) - 5e-3).abs() < 1e-12);
     }
 
-    /// Uniaxial compression at σ_c uses the whole strength.
+    /// Uniaxial compression at σ_c uses the whole strength; a rock without
+    /// strength has no value (the field is not offered then).
     #[test]
     fn strength_used_is_one_at_the_unconfined_strength() {
-        let ucs = 2.0 * 15e6 * 30f64.to_radians().cos() / (1.0 - 30f64.to_radians().sin());
-        let u = FieldKind::Strength.value(&at([0.0, -ucs, 0.0]), &Rock::of(&material()));
+        let u = FieldKind::Strength.value(&at([0.0, -50e6, 0.0]), &rock());
         assert!((u - 1.0).abs() < 1e-12, "{u}");
+        let none = Rock {
+            strength: None,
+            ..rock()
+        };
+        assert!(
+            FieldKind::Strength
+                .value(&at([0.0, -50e6, 0.0]), &none)
+                .is_nan()
+        );
     }
 
     #[test]

@@ -199,20 +199,8 @@ fn sliding_plate(mu: f64, a_over_r0: f64) -> cdca::Scene {
 /// As r0/a → 0 the uniform terms vanish against the singular one and this
 /// tends to the LEFM sliding-crack form [`lefm_wing_load`].
 fn finite_r0_wing_load(mu: f64, r0: f64, k_ic: f64) -> (f64, f64) {
-    let k2 = 0.5 * (1.0 - mu) * (PI * A_SLIDE).sqrt();
-    let (th, g) = (0..=18_000)
-        .map(|j| (-90.0 + 0.01 * f64::from(j)).to_radians())
-        .map(|th| {
-            let (st, ct) = th.sin_cos();
-            let singular = k2 / (2.0 * PI * r0).sqrt() * (-1.5 * st * (0.5 * th).cos());
-            (th, singular - 0.5 - 2.0 * 0.5 * mu * st * ct)
-        })
-        .max_by(|a, b| a.1.total_cmp(&b.1))
-        .expect("angles");
-    (
-        k_ic / (2.0 * PI * r0).sqrt() / g / P_SLIDE,
-        th.to_degrees().abs(),
-    )
+    let (g, angle) = sliding_crack_kink(45.0, mu, A_SLIDE, r0);
+    (k_ic / (2.0 * PI * r0).sqrt() / g / P_SLIDE, angle)
 }
 
 /// λ at which the LEFM sliding crack starts a wing: the kink's largest

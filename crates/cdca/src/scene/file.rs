@@ -224,10 +224,11 @@ pub enum Sampling {
     Field,
     /// From the Williams expansion with K_I, K_II, T.
     Williams,
-    /// Singular Williams terms with K_I, K_II at r0 plus the uniform part of
-    /// the computed field at the tip (T, face tractions, far field), fitted
-    /// on rings of 2–4 element sizes: independent of r0/h, the same at
-    /// every tip.
+    /// Singular Williams terms with K_I⁺ = max(K_I, 0) and K_II at r0 plus
+    /// the uniform stress at the tip: σ22, σ12 from the tractions of the
+    /// faces within 2h of the tip (zero when open) and σ11 = T + σ22
+    /// (`criterion::sample_hybrid`): independent of r0/h, the same at every
+    /// tip.
     #[default]
     Hybrid,
 }
@@ -254,7 +255,9 @@ pub struct CriterionSpec {
     #[serde(default)]
     pub kind: CriterionKind,
     /// Radius of the evaluation circle, m; `None` means the process-zone
-    /// size `(K_IC/σ_t)² / 2π` (see `criterion::radius_and_strength`).
+    /// size `r_p = (K_IC/σ_t)² / 2π` (`criterion::radius_and_strength`),
+    /// or `a/5π` on a crack of half-length `a < 5π r_p`
+    /// (`CriterionParams::for_crack`).
     #[serde(default)]
     pub r0: Option<f64>,
     #[serde(default)]
@@ -280,7 +283,8 @@ pub enum GrowthControl {
 pub struct GrowthSpec {
     #[serde(default)]
     pub control: GrowthControl,
-    /// Growth increment Δa, m; `None` means `max(r0, 3h)`.
+    /// Growth increment Δa, m; `None` means `max(r0, 3h)` with the scene's
+    /// r0 (`r_p` when `criterion.r0` is not given), the same for every crack.
     #[serde(default)]
     pub increment: Option<f64>,
     #[serde(default = "default_load_steps")]

@@ -21,6 +21,7 @@ pub use cdca::race::Sample;
 use cdca::race::{RaceSystem, Reference};
 use cdca::scene::{Ordering, SolverKind, SolverSpec};
 use cdca::solvers::Relaxation;
+use cdca::solvers::automaton::sor_omega;
 use egui_plot::PlotPoint;
 use web_time::Instant;
 
@@ -310,13 +311,11 @@ impl Race {
     /// The solver settings of `racer` on this scene (tolerance and iteration
     /// limit out of the way: the race stops on the energy error or the cap).
     fn spec(&self, racer: &Racer) -> SolverSpec {
-        let n = self.scene.mesh.nx.max(self.scene.mesh.ny) as f64;
+        let n = self.scene.mesh.nx.max(self.scene.mesh.ny);
         SolverSpec {
             kind: racer.kind,
             ordering: racer.ordering,
-            omega: racer
-                .omega
-                .unwrap_or_else(|| 2.0 / (1.0 + (std::f64::consts::PI / n).sin())),
+            omega: racer.omega.unwrap_or_else(|| sor_omega(n)),
             tolerance: 1e-14,
             max_iterations: usize::MAX,
             ..self.scene.solver.clone()
@@ -461,7 +460,7 @@ mod tests {
         scene.mesh.ny = 40;
         let race = Race::new(&cdca::Scene::try_from(scene).expect("valid"), 1.0);
         let spec = race.spec(&RACERS[2]);
-        let expected = 2.0 / (1.0 + (std::f64::consts::PI / 40.0).sin());
+        let expected = 2.0 / (1.0 + (std::f64::consts::PI / 40.0).sin()); // Young's optimum
         assert!((spec.omega - expected).abs() < 1e-15);
         assert_eq!(spec.ordering, Ordering::RedBlack);
     }

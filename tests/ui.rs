@@ -12,7 +12,7 @@ use cdca_workbench::app::Message;
 use cdca_workbench::{Command, Options, RunMode, WorkbenchApp};
 use egui::{Event, Key, Modifiers, PointerButton, Pos2};
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable;
+use egui_kittest::kittest::{NodeT, Queryable};
 
 const SIZE: [f32; 2] = [1400.0, 900.0];
 
@@ -283,6 +283,35 @@ fn in_sweep_contact_is_offered_with_the_automaton_only() {
         ContactUpdate::Outer
     );
     assert!(h.query_by_label("Contact update").is_none());
+}
+
+/// With the automaton the solver panel offers Young's optimal ω for the
+/// mesh (2/(1 + sin(π/60)) = 1.9005 on the default 60² scene); one click
+/// sets it, the button then greys out, and Undo gives ω = 1 back. Other
+/// solvers do not show it.
+#[test]
+fn the_automaton_offers_the_optimal_omega_of_the_mesh() {
+    use cdca::scene::SolverKind;
+    let mut h = harness(no_solver());
+    h.run();
+    assert!(h.query_by_label_contains("Use ω =").is_none(), "direct");
+    with_solver(&mut h, SolverKind::Automaton);
+    assert_eq!(h.state().scene().solver.omega, 1.0);
+    h.get_by_label("Use ω = 1.90").click();
+    h.run_steps(2);
+    let best = 2.0 / (1.0 + (std::f64::consts::PI / 60.0).sin());
+    assert!((h.state().scene().solver.omega - best).abs() < 1e-12);
+    assert!((best - 1.9005).abs() < 1e-4);
+    assert!(
+        h.get_by_label("Use ω = 1.90")
+            .accesskit_node()
+            .is_disabled()
+    );
+    h.get_by_label("Undo").click();
+    h.run_steps(2);
+    assert_eq!(h.state().scene().solver.omega, 1.0);
+    with_solver(&mut h, SolverKind::Multigrid);
+    assert!(h.query_by_label_contains("Use ω =").is_none(), "multigrid");
 }
 
 /// The Growth section offers the control and only the settings it uses:

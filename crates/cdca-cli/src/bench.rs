@@ -22,6 +22,7 @@ use cdca::discretisation::assembly::ElementBlock;
 use cdca::discretisation::xfem::Xfem;
 use cdca::race::{RaceSystem, Reference, Sample};
 use cdca::scene::{Ordering, Scene, SolverKind, SolverSpec};
+use cdca::solvers::automaton::sor_omega;
 use cdca::solvers::relaxation::Relaxation;
 use scenes::SCENES;
 
@@ -145,7 +146,7 @@ fn bench_case(
     eprintln!("{name} {n}²: {} DOFs, direct {t_direct:.3} s", x.n_free());
     let limit = (budget * t_direct).max(2.0);
     for (solver, kind, ordering, omega) in SOLVERS {
-        let omega = omega.unwrap_or(2.0 / (1.0 + (std::f64::consts::PI / n as f64).sin()));
+        let omega = omega.unwrap_or(sor_omega(n));
         let case = Case {
             x: &x,
             blocks: &blocks,

@@ -4,6 +4,7 @@
 //! refreshes it after each piece of solver work.
 
 use cdca::report::{GrowthStepReport, IntactRockReport, Outcome, TipReport};
+use cdca::scene::SolverKind;
 use cdca::{ContactPointView, RelaxStatus, ResidualSample, Simulation};
 use egui_plot::PlotPoint;
 
@@ -38,6 +39,9 @@ pub struct SolutionView {
     pub outcome: Option<Outcome>,
     /// Status of the current relaxation, if one ran.
     pub relax: Option<RelaxStatus>,
+    /// The linear solver behind `relax` and the residual samples (during
+    /// growth, the growth solver).
+    pub solver: SolverKind,
     /// Fraction of the grown tips' elements integrated, while a growth
     /// step rebuilds the discretisation.
     pub rebuild: Option<f64>,
@@ -59,6 +63,7 @@ impl SolutionView {
         self.split = false;
         self.live = !solved && sim.is_relaxing();
         self.relax = relax;
+        self.solver = sim.scene().solver.kind;
         self.rebuild = sim.rebuild_progress();
         self.cracks = sim.cracks();
         self.load_factor = sim.load_factor();

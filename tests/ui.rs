@@ -730,7 +730,7 @@ fn run_growth_with_an_iterative_solver_advances_every_frame() {
         h.state().run_mode()
     );
     assert!(
-        h.query_by_label_contains("sweeps, residual").is_some()
+        h.query_by_label_contains(", residual").is_some()
             || h.query_by_label_contains("integrating the grown tips")
                 .is_some()
             || h.state().run_mode() != RunMode::Growing,

@@ -365,15 +365,15 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         });
         ui.end_row();
         if let Some(r) = view.relax {
-            ui.label("Relaxation");
+            ui.label("Last solve");
             let text = format!(
-                "{} sweeps, residual {:.2e}{}",
-                r.iterations,
+                "{}, residual {:.2e}{}",
+                iterations(view.solver, r.iterations),
                 r.residual,
-                match (r.finished, r.converged) {
-                    (_, true) => ", converged",
-                    (true, false) => ", NOT converged",
-                    (false, false) => "",
+                if r.finished && !r.converged {
+                    ", NOT converged"
+                } else {
+                    ""
                 }
             );
             if r.finished && !r.converged {
@@ -452,7 +452,22 @@ fn intact_rock_row(ui: &mut Ui, r: &cdca::report::IntactRockReport) {
     ui.end_row();
 }
 
-/// The growth run's progress line: step, λ, sweeps and residual of the
+/// `n` iterations of a solve by `kind`, in that solver's own unit: the
+/// automaton's sweeps, conjugate-gradient iterations, or the direct
+/// solver's linear solves (one per contact iteration).
+fn iterations(kind: SolverKind, n: usize) -> String {
+    let unit = match (kind, n) {
+        (SolverKind::Automaton, 1) => "sweep",
+        (SolverKind::Automaton, _) => "sweeps",
+        (SolverKind::Cg | SolverKind::Multigrid, 1) => "CG iteration",
+        (SolverKind::Cg | SolverKind::Multigrid, _) => "CG iterations",
+        (SolverKind::Direct, 1) => "linear solve",
+        (SolverKind::Direct, _) => "linear solves",
+    };
+    format!("{n} {unit}")
+}
+
+/// The growth run's progress line: step, λ, iterations and residual of the
 /// step's solve.
 fn growth_progress(view: &crate::solution::SolutionView) -> String {
     let step = view.history.len() + 1;
@@ -464,8 +479,10 @@ fn growth_progress(view: &crate::solution::SolutionView) -> String {
     }
     match view.last_residual {
         Some(r) => format!(
-            "step {step}, λ = {:.3}, {} sweeps, residual {:.2e}",
-            view.load_factor, r.iteration, r.residual
+            "step {step}, λ = {:.3}, {}, residual {:.2e}",
+            view.load_factor,
+            iterations(view.solver, r.iteration),
+            r.residual
         ),
         None => format!("step {step}, λ = {:.3}", view.load_factor),
     }
@@ -480,8 +497,8 @@ fn unconverged_ui(ui: &mut Ui, view: &crate::solution::SolutionView) {
         ui.colored_label(
             warn,
             format!(
-                "Not converged: the solve stopped at a cap after {} sweeps, residual {:.2e}. The field shown is not a solution (raise Max iterations or Max contact iterations).",
-                r.iterations, r.residual
+                "Not converged: the solve stopped at a cap after {}, residual {:.2e}. The field shown is not a solution (raise Max iterations or Max contact iterations).",
+                iterations(view.solver, r.iterations), r.residual
             ),
         );
     }
@@ -493,5 +510,22 @@ fn unconverged_ui(ui: &mut Ui, view: &crate::solution::SolutionView) {
                 s.step, s.solver_iterations, s.contact.iterations, s.contact.residual
             ),
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each solver counts in its own unit: with the direct solver a contact
+    /// solve is a number of linear solves, not sweeps.
+    #[test]
+    fn iterations_are_named_by_the_solver() {
+        assert_eq!(iterations(SolverKind::Direct, 13), "13 linear solves");
+        assert_eq!(iterations(SolverKind::Direct, 1), "1 linear solve");
+        assert_eq!(iterations(SolverKind::Automaton, 1), "1 sweep");
+        assert_eq!(iterations(SolverKind::Automaton, 2400), "2400 sweeps");
+        assert_eq!(iterations(SolverKind::Multigrid, 13), "13 CG iterations");
+        assert_eq!(iterations(SolverKind::Cg, 1), "1 CG iteration");
     }
 }

@@ -209,6 +209,34 @@ fn a_bad_scene_file_shows_an_error_and_keeps_the_scene() {
     assert!(h.state().message().is_none());
 }
 
+/// A crack drawn across the specimen, from one edge to another, cuts it in
+/// two before any load: the workbench says so, naming the crack, instead of
+/// failing in the factorisation; Undo gives back the solved scene.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn a_crack_drawn_across_the_specimen_is_refused_with_a_reason() {
+    let mut h = harness(Options::default());
+    h.run_steps(20);
+    assert!(h.state().is_solved());
+    edit_scene(&mut h, |s| {
+        let mut across = s.cracks[0].clone();
+        across.points = Some(vec![[0.0, 0.012], [0.03, 0.018]]);
+        s.cracks.push(across);
+    });
+    h.run_steps(5);
+    assert!(matches!(h.state().message(), Some(Message::Error(_))));
+    h.get_by_label_contains("`cracks[1]`");
+    h.get_by_label_contains("cuts the specimen in two before any load");
+    assert!(!h.state().is_solved());
+    h.get_by_label("Undo").click();
+    h.run_steps(20);
+    assert_eq!(h.state().scene().cracks.len(), 1);
+    assert!(h.state().is_solved());
+}
+
 #[test]
 fn undo_restores_a_deleted_crack_and_redo_deletes_it_again() {
     let mut h = harness(no_solver());

@@ -79,6 +79,12 @@ const BAD: &[(&str, &str, &str, &str)] = &[
         "cracks[0].points[1]",
     ),
     (
+        "crack from edge to edge",
+        "[[0.1, 0.1], [0.2, 0.2]]",
+        "[[0.0, 0.1], [0.3, 0.2]]",
+        "cracks[0]` = from [0, 0.1] to [0.3, 0.2]: this crack runs from the boundary back",
+    ),
+    (
         "normal stiffness 0",
         r#""normal_stiffness": 200e9"#,
         r#""normal_stiffness": 0"#,

@@ -36,6 +36,6 @@ pub use error::{SceneError, SolveError};
 pub use scene::Scene;
 pub use simulation::{
     ContactPointView, CriterionCurve, INTEGRATION_CHUNK, Initiation, LAMBDA_TOLERANCE, MAX_TRIALS,
-    Simulation, initiation,
+    Simulation, check_cracks, initiation,
 };
 pub use solvers::{RelaxStatus, ResidualSample};

@@ -883,10 +883,12 @@ fn growth_ends_when_the_specimen_is_split() {
 /// crack 1 still has a free tip. Once, step 41's factorisation met a
 /// non-positive pivot (the piece's rigid motion once the faces open) and
 /// `grow_step` returned the error: the 40 steps were lost. The reference
-/// that the cut is a real mechanism: a fresh solve of the final cracks
-/// fails the same way, while the same cracks with the last segment stopped
-/// half an element short of the boundary (a ligament left) solve and
-/// converge.
+/// that the cut is real: a new scene drawn with the final cracks is refused
+/// before any work (`check_cracks` names crack 0, which runs from boundary
+/// to boundary; a fresh solve of it met the same non-positive pivot), while
+/// the same cracks with the last segment stopped half an element short of
+/// the boundary (a ligament left) solve and converge. The run saved as it
+/// ended still opens.
 #[test]
 fn growth_that_cuts_the_specimen_apart_ends_through() {
     let mut s = bundled("specimen_two_flaws_overlapping");
@@ -916,7 +918,11 @@ fn growth_that_cuts_the_specimen_apart_ends_through() {
     assert_eq!((grown.len(), grown[0].crack, grown[0].tip), (1, 0, 0));
     assert!(grown[0].y.abs() < 1e-12, "{}", grown[0].y);
     assert!(history[39].tips.iter().any(|t| t.crack == 1));
-    // a fresh solve of the final cracks meets the mechanism ...
+    // the run saved as it ended opens (its contact states hold the pieces)
+    let saved = Simulation::new(sim.scene().clone()).expect("a saved run may end split");
+    assert!(saved.scene().growth.resume.is_some());
+    // a new scene drawn with those cracks is refused before any work (its
+    // faces start open: the cut-off piece would be a mechanism) ...
     let with_points = |pts: &[[f64; 2]]| {
         let mut f = s.clone();
         for (spec, c) in f.cracks.iter_mut().zip(&cracks) {
@@ -926,12 +932,10 @@ fn growth_that_cuts_the_specimen_apart_ends_through() {
         f.cracks[0].points = Some(pts.to_vec());
         f
     };
-    let cut = Simulation::new(valid(with_points(&cracks[0])))
-        .expect("valid")
-        .solve();
+    let drawn = Simulation::new(valid(with_points(&cracks[0]))).err();
     assert!(
-        matches!(cut, Err(cdca::SolveError::NotPositiveDefinite { .. })),
-        "{cut:?}"
+        matches!(&drawn, Some(cdca::SolveError::Scene(cdca::SceneError::Invalid { field, .. })) if field == "cracks[0]"),
+        "{drawn:?}"
     );
     // ... which a ligament of h/2 (h = 0.03/64) removes
     let h = 0.03 / 64.0;

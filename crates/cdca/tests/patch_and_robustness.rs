@@ -226,3 +226,56 @@ fn intact_rock_is_left_out_for_a_rock_without_cohesion() {
     let json = serde_json::to_string(&r).expect("serialises");
     assert!(!json.contains("intact_rock"), "{json}");
 }
+
+/// Cracks drawn from the boundary back to the boundary cut the specimen in
+/// two before any load; with its faces open the piece they cut off has no
+/// support, and the first factorisation met a non-positive pivot
+/// (`cdca grow` ended `error` at step 1 with "stiffness matrix is not
+/// positive definite"). They are refused before any work, naming the
+/// crack, or `cracks` for a linked chain; a crack from one edge into the
+/// specimen, or two that touch without reaching a second edge, are fine.
+#[test]
+fn cracks_that_cut_the_specimen_are_refused_before_any_work() {
+    let refused = |cracks: &[&[[f64; 2]]]| {
+        let mut s = bundled("specimen_single_flaw");
+        s.cracks = cracks
+            .iter()
+            .map(|p| CrackSpec {
+                points: Some(p.to_vec()),
+                ..s.cracks[0].clone()
+            })
+            .collect();
+        let scene = valid(s);
+        let checked = cdca::check_cracks(&scene).err();
+        assert_eq!(
+            checked,
+            cdca::Simulation::new(scene).err().map(|e| match e {
+                cdca::SolveError::Scene(e) => e,
+                e => panic!("{e}"),
+            })
+        );
+        checked.map(|e| match e {
+            cdca::SceneError::Invalid { field, .. } => field,
+            e => panic!("{e}"),
+        })
+    };
+    // a corner cut off (left edge to top edge), and a crack across
+    assert_eq!(
+        refused(&[&[[0.0, 0.026], [0.004, 0.03]]]),
+        Some("cracks[0]".to_owned())
+    );
+    let across: &[[f64; 2]] = &[[0.0, 0.012], [0.03, 0.018]];
+    let edge: &[[f64; 2]] = &[[0.0, 0.012], [0.015, 0.015]];
+    assert_eq!(
+        refused(&[&[[0.01, 0.01], [0.02, 0.02]], across]),
+        Some("cracks[1]".to_owned())
+    );
+    // two edge cracks linked at a junction: the chain is refused
+    assert_eq!(
+        refused(&[edge, &[[0.015, 0.015], [0.03, 0.018]]]),
+        Some("cracks".to_owned())
+    );
+    // an edge crack, and one touching it without reaching a second edge
+    assert_eq!(refused(&[edge]), None);
+    assert_eq!(refused(&[edge, &[[0.015, 0.015], [0.02, 0.02]]]), None);
+}

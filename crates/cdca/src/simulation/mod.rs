@@ -29,5 +29,5 @@ mod views;
 pub use grow::INTEGRATION_CHUNK;
 pub use initiation::{Initiation, initiation};
 pub use search::{LAMBDA_TOLERANCE, MAX_TRIALS};
-pub use state::Simulation;
+pub use state::{Simulation, check_cracks};
 pub use views::{ContactPointView, CriterionCurve};

@@ -13,7 +13,7 @@ use crate::discretisation::model::Model;
 use crate::discretisation::xfem::Xfem;
 use crate::error::{SceneError, SolveError};
 use crate::fracture::criterion::{Circle, CriterionParams, Faces};
-use crate::geometry::cracks::Crack;
+use crate::geometry::cracks::{Crack, TipKind, split_specimen};
 use crate::report::{GrowthStepReport, Outcome, TipReport};
 use crate::scene::Scene;
 use crate::solvers::automaton::AutomatonParams;
@@ -80,12 +80,58 @@ pub(super) struct Scratch {
     pub(super) rebuild_points: usize,
 }
 
+/// Whether a scene's cracks leave the specimen in one piece, checked
+/// before any work (`cdca` runs it on every scene it reads): cracks that
+/// run from the boundary back to the boundary, alone or linked
+/// ([`split_specimen`]), have failed the specimen before any load (growth
+/// ends `through` at such a split), and a piece held by crack faces alone
+/// has no support once they open: the stiffness is singular. A scene saved
+/// mid-growth (`growth.resume`) may hold a split: that run has ended.
+///
+/// Errors name the crack (`cracks[i]`, its end points) when one alone runs
+/// from boundary to boundary, or `cracks` for a linked chain.
+pub fn check_cracks(scene: &Scene) -> Result<(), SceneError> {
+    let model = Model::new(scene.clone());
+    unsplit(scene, &model.initial_cracks())
+}
+
+fn unsplit(scene: &Scene, cracks: &[Crack]) -> Result<(), SceneError> {
+    if scene.growth.resume.is_some() || !split_specimen(cracks) {
+        return Ok(());
+    }
+    let path = "from the boundary back to the boundary";
+    let why = "before any load: a piece held by its crack faces alone has no support once \
+               they open (end the cracks inside the specimen)";
+    Err(
+        match cracks.iter().position(|c| c.tips == [TipKind::Boundary; 2]) {
+            Some(i) => {
+                let ends = [cracks[i].tip_point(0), cracks[i].tip_point(1)];
+                SceneError::invalid(
+                    format!("cracks[{i}]"),
+                    format!(
+                        "from [{}, {}] to [{}, {}]",
+                        ends[0].x, ends[0].y, ends[1].x, ends[1].y
+                    ),
+                    format!("this crack runs {path} and cuts the specimen in two {why}"),
+                )
+            }
+            None => SceneError::invalid(
+                "cracks",
+                format!("{} cracks", cracks.len()),
+                format!("linked, these cracks run {path} and cut the specimen in two {why}"),
+            ),
+        },
+    )
+}
+
 impl Simulation {
     /// Builds the discretisation of a (valid) scene; no solve yet. Fails
-    /// only when `growth.resume` does not fit the cracks' discretisation.
+    /// when the cracks split the specimen ([`check_cracks`]) or
+    /// `growth.resume` does not fit the cracks' discretisation.
     pub fn new(scene: Scene) -> Result<Self, SolveError> {
         let model = Model::new(scene.clone());
         let cracks = model.initial_cracks();
+        unsplit(&scene, &cracks)?;
         let xfem = model.discretise(cracks.clone());
         let f_ext = crate::discretisation::loads::traction_forces(&xfem, &scene.boundary);
         let n = xfem.n_free();

@@ -11,8 +11,8 @@
 use nalgebra::{DMatrix, DVector};
 
 use crate::contact::law::{
-    ContactState, FaceState, contact_system_split, friction_limit, gaps, stick_or_slip,
-    update_point,
+    ContactState, FaceState, contact_system_split, coulomb_limit, friction_limit, gaps,
+    stick_or_slip, update_point,
 };
 use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::dofs::FIXED;
@@ -810,7 +810,7 @@ pub fn breaks_law(
             new.g_n.abs() > FROZEN_TOLERANCE * jump_scale
         }
         _ => {
-            let limit = crack.friction * new.p_n.abs() + crack.cohesion;
+            let limit = coulomb_limit(crack, new.p_n);
             let trial = crack.kt * (gt - committed_slip);
             (trial.abs() - limit).abs() > FROZEN_TOLERANCE * limit.max(trial.abs())
         }
@@ -867,7 +867,7 @@ pub fn forced(kind: ContactState, crack: &Crack, slip: f64, gn: f64, gt: f64) ->
         ContactState::Slip => {
             let p_n = crack.kn * gn.min(0.0);
             let trial = crack.kt * (gt - slip);
-            let p_t = (crack.friction * p_n.abs() + crack.cohesion) * trial.signum();
+            let p_t = coulomb_limit(crack, p_n) * trial.signum();
             FaceState {
                 state: ContactState::Slip,
                 slip: gt - p_t / crack.kt,

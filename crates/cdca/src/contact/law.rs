@@ -2,8 +2,8 @@
 //!
 //! At a face point, `[[u]] = u⁺ − u⁻`, `g_N = [[u]]·n`, `g_T = [[u]]·t`.
 //! `g_N ≥ 0`: open. Otherwise `p_N = k_N g_N`, trial `p_T* = k_T (g_T − g_T^s)`,
-//! `τ_y = μ|p_N| + c_c`: stick if `|p_T*| ≤ τ_y`, else slip with
-//! `p_T = τ_y sign(p_T*)`. Stick points add `k_T t⊗t`, closed points
+//! `τ_y = μ|p_N| + min(c_c, |p_N|)` ([`coulomb_limit`]): stick if
+//! `|p_T*| ≤ τ_y`, else slip with `p_T = τ_y sign(p_T*)`. Stick points add `k_T t⊗t`, closed points
 //! `k_N n⊗n`; slip friction enters as a force from the last iterate, so the
 //! operator stays symmetric positive definite for every solver.
 
@@ -144,10 +144,28 @@ pub fn update_point(crack: &Crack, committed_slip: f64, g_n: f64, g_t: f64) -> F
     stick_or_slip(crack, committed_slip, g_n, g_t, crack.kn * g_n, tau_y)
 }
 
-/// The Coulomb limit `τ_y = μ|p_N| + c_c` at the normal gap `g_n` (the
-/// cohesion alone when open).
+/// The Coulomb limit at the normal traction `p_n`:
+/// `τ_y = μ|p_N| + min(c_c, |p_N|)`.
+///
+/// Faces pressed together harder than their cohesion c_c carry SPEC §5's
+/// `μ|p_N| + c_c`; lightly touching faces mobilise the cohesion with the
+/// pressure, so the limit falls to zero as a point opens (the shape of
+/// Patton's bilinear envelope for rock joints: a steeper branch through
+/// the origin at low normal stress). With `μ|p_N| + c_c` down to `p_N = 0`
+/// the limit jumps from c_c to 0 where a face point opens, and such a point
+/// has no consistent state: closed it carries c_c and the shear opens it,
+/// open it carries nothing and closes. With c_c = 15 MPa on the default
+/// flaw the contact iteration cycled on one of them until its cap (growth
+/// stopped `not_converged` at step 4). Without cohesion nothing changes.
+pub fn coulomb_limit(crack: &Crack, p_n: f64) -> f64 {
+    let p = p_n.abs();
+    crack.friction * p + crack.cohesion.min(p)
+}
+
+/// [`coulomb_limit`] at the normal gap `g_n` (`p_N = k_N min(g_N, 0)`:
+/// zero when open).
 pub fn friction_limit(crack: &Crack, g_n: f64) -> f64 {
-    crack.friction * (crack.kn * g_n.min(0.0)).abs() + crack.cohesion
+    coulomb_limit(crack, crack.kn * g_n.min(0.0))
 }
 
 /// The tangential return mapping at the gaps `(g_n, g_t)` with the normal
@@ -286,4 +304,38 @@ pub fn carry_over(
                 .unwrap_or_default()
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::cracks::TipKind;
+    use crate::geometry::plane::p2;
+
+    fn crack(friction: f64, cohesion: f64) -> Crack {
+        Crack {
+            points: vec![p2([0.0, 0.0]), p2([1.0, 0.0])],
+            tips: [TipKind::Free; 2],
+            friction,
+            cohesion,
+            kn: 1e12,
+            kt: 1e11,
+        }
+    }
+
+    /// SPEC §5's μ|p_N| + c_c once |p_N| ≥ c_c; below, the cohesion grows
+    /// with the pressure, so the limit is continuous (zero) where a point
+    /// opens; without cohesion μ|p_N| everywhere.
+    #[test]
+    fn the_coulomb_limit_is_continuous_where_faces_open() {
+        let c = crack(0.5, 15e6);
+        assert_eq!(coulomb_limit(&c, -40e6), 0.5 * 40e6 + 15e6);
+        assert_eq!(coulomb_limit(&c, -15e6), 0.5 * 15e6 + 15e6);
+        assert_eq!(coulomb_limit(&c, -6e6), 1.5 * 6e6);
+        assert_eq!(coulomb_limit(&c, 0.0), 0.0);
+        assert_eq!(friction_limit(&c, 1e-9), 0.0, "open");
+        assert_eq!(friction_limit(&c, -2e-5), 0.5 * 2e7 + 15e6);
+        let dry = crack(0.5, 0.0);
+        assert_eq!(coulomb_limit(&dry, -6e6), 0.5 * 6e6);
+    }
 }

@@ -120,19 +120,28 @@ pub fn rel(a: f64, b: f64) -> f64 {
 /// closed, sliding crack of half-length `a` at `beta_deg` to a uniaxial
 /// compression of unit size applied across the horizontal (infinite
 /// plate, faces in slip with friction `mu`), at its peak: returns the peak
-/// (per unit load) and the kink angle |θ| (degrees).
+/// (per unit load) and the kink angle |θ| (degrees). See
+/// [`sliding_crack_peak`].
+pub fn sliding_crack_kink(beta_deg: f64, mu: f64, a: f64, r0: f64) -> (f64, f64) {
+    sliding_crack_peak(beta_deg, mu, 0.0, 1.0, a, r0)
+}
+
+/// [`sliding_crack_kink`] under a compression `s` (Pa) with face cohesion
+/// `c` (Pa): the peak σ_θθ (Pa) and its angle |θ| (degrees).
 ///
-/// With σ_n = cos² β and σ_p = sin² β the compressions across and along
-/// the crack, τ = sin β cos β, the face traction τ_f = μσ_n and the sliding
+/// With σ_n = s cos² β and σ_p = s sin² β the compressions across and
+/// along the crack, τ = s sin β cos β, the face traction
+/// τ_f = μσ_n + min(c, σ_n) (the contact law's limit) and the sliding
 /// crack's K_II = (τ − τ_f)√(πa) (K_I = 0):
 /// `σ_θθ(θ) = K_II/√(2πr0) · cos(θ/2)(−3/2 sin θ) − σ_p sin² θ − σ_n cos² θ
 /// − 2 τ_f sin θ cos θ` (the singular term plus the uniform stress at the
 /// tip: σ11 = −σ_p, σ22 = −σ_n, σ12 = τ_f), sampled every 0.01° on
 /// |θ| ≤ 90°. As r0/a → 0 the peak tends to LEFM's 70.5°.
-pub fn sliding_crack_kink(beta_deg: f64, mu: f64, a: f64, r0: f64) -> (f64, f64) {
+pub fn sliding_crack_peak(beta_deg: f64, mu: f64, c: f64, s: f64, a: f64, r0: f64) -> (f64, f64) {
     let (sb, cb) = beta_deg.to_radians().sin_cos();
-    let (sn, sp, tf) = (cb * cb, sb * sb, mu * cb * cb);
-    let k2 = (sb * cb - tf) * (PI * a).sqrt();
+    let (sn, sp) = (s * cb * cb, s * sb * sb);
+    let tf = mu * sn + c.min(sn);
+    let k2 = (s * sb * cb - tf) * (PI * a).sqrt();
     let (th, peak) = (0..=18_000)
         .map(|j| (-90.0 + 0.01 * f64::from(j)).to_radians())
         .map(|th| {

@@ -3,9 +3,10 @@
 //! At a face point, `[[u]] = u⁺ − u⁻`, `g_N = [[u]]·n`, `g_T = [[u]]·t`.
 //! `g_N ≥ 0`: open. Otherwise `p_N = k_N g_N`, trial `p_T* = k_T (g_T − g_T^s)`,
 //! `τ_y = μ|p_N| + min(c_c, |p_N|)` ([`coulomb_limit`]): stick if
-//! `|p_T*| ≤ τ_y`, else slip with `p_T = τ_y sign(p_T*)`. Stick points add `k_T t⊗t`, closed points
-//! `k_N n⊗n`; slip friction enters as a force from the last iterate, so the
-//! operator stays symmetric positive definite for every solver.
+//! `|p_T*| ≤ τ_y`, else slip with `p_T = τ_y sign(p_T*)`. Stick points add
+//! `k_T t⊗t`, closed points `k_N n⊗n`; slip friction enters as a force from
+//! the last iterate, so the operator stays symmetric positive definite for
+//! every solver.
 
 use std::collections::BTreeMap;
 

@@ -78,7 +78,8 @@ impl SceneFile {
     }
 
     /// A crack polyline: at least 2 finite points inside the specimen, a
-    /// length and no zero-length segment. `point_field(k)` names point `k`.
+    /// length, no zero-length segment, and not all of it along the boundary
+    /// (it would cut nothing). `point_field(k)` names point `k`.
     fn validate_polyline(
         &self,
         field: &str,
@@ -103,7 +104,21 @@ impl SceneFile {
             let long = distance(points[k - 1], points[k]) > tiny;
             ensure(long, &point_field(k), fmt_point(points[k]), reason)?;
         }
-        Ok(())
+        let along = points.windows(2).all(|s| self.along_a_side(s[0], s[1]));
+        let reason = "lies along the specimen's boundary: it cuts nothing";
+        ensure(!along, field, fmt_point(points[0]), reason)
+    }
+
+    /// Whether the segment `a`–`b` runs along one side of the specimen
+    /// (both ends on it, within 1e-9 of the specimen size).
+    fn along_a_side(&self, a: [f64; 2], b: [f64; 2]) -> bool {
+        let (w, h) = (self.specimen.width, self.specimen.height);
+        let tol = 1e-9 * w.max(h);
+        let on = |v: f64, side: f64| (v - side).abs() <= tol;
+        (on(a[0], 0.0) && on(b[0], 0.0))
+            || (on(a[0], w) && on(b[0], w))
+            || (on(a[1], 0.0) && on(b[1], 0.0))
+            || (on(a[1], h) && on(b[1], h))
     }
 
     fn validate_arc(&self, field: &str, arc: &ArcSpec, crack: &CrackSpec) -> Check {
@@ -345,6 +360,8 @@ mod tests {
         ("cracks[0].points", |s| s.cracks[0].points = Some(vec![[0.1, 0.1]])),
         ("cracks[0].points", |s| s.cracks[0].points = Some(vec![])),
         ("cracks[0].points", |s| s.cracks[0].points = Some(vec![[0.1, 0.1]; 3])),
+        ("cracks[0].points", |s| s.cracks[0].points = Some(vec![[0.0, 0.0], [0.3, 1e-12]])),
+        ("cracks[0].points", |s| s.cracks[0].points = Some(vec![[0.3, 0.1], [0.3, 0.3], [0.2, 0.3]])),
         ("cracks[0].points[2]", |s| s.cracks[0].points = Some(vec![[0.1, 0.1], [0.2, 0.2], [0.2, 0.2]])),
         ("cracks[0].points[1]", |s| s.cracks[0].points = Some(vec![[0.1, 0.1], [0.31, 0.2]])),
         ("cracks[0].points[0]", |s| s.cracks[0].points = Some(vec![[0.1, -0.01], [0.2, 0.2]])),
@@ -417,8 +434,8 @@ mod tests {
         scene.material.cohesion = 0.0;
         scene.mesh.enrichment_radius = Some(1.0);
         (scene.mesh.nx, scene.mesh.ny) = (2000, 2000);
-        // A crack that runs along the boundary, within the tolerance.
-        scene.cracks[0].points = Some(vec![[0.0, -1e-12], [0.3, 0.0]]);
+        // A crack that starts on the boundary, within the tolerance.
+        scene.cracks[0].points = Some(vec![[0.0, -1e-12], [0.2, 0.1]]);
         assert_eq!(field_of(&scene), None);
     }
 

@@ -18,13 +18,14 @@ use crate::field::{FieldKey, FieldKind};
 use crate::frame_stats::FrameStats;
 use crate::panels;
 use crate::persist::Persisted;
+use crate::plot_tab::PlotTab;
 use crate::run::RunMode;
 use crate::runner::Runner;
 use crate::scenes;
 use crate::study::{Study, StudySetup};
 use crate::task::{Progress, Task};
 pub use crate::view::Message;
-use crate::view::{AppView, PlotTab, RunStatus, ViewState};
+use crate::view::{AppView, RunStatus, ViewState};
 
 /// Solver work per frame (the rest of a 60 Hz frame is left to drawing).
 pub const FRAME_BUDGET: Duration = Duration::from_millis(12);

@@ -6,9 +6,9 @@ use cdca::scene::SceneFile;
 use crate::app::WorkbenchApp;
 use crate::command::{Command, Export, PlotFormat};
 use crate::compare::Race;
+use crate::plot_tab::PlotTab;
 use crate::study::Study;
 use crate::view::Message;
-use crate::view::PlotTab;
 use crate::{export, io, scenes};
 
 impl WorkbenchApp {

@@ -3,8 +3,8 @@
 
 use cdca::scene::SceneFile;
 
+use crate::plot_tab::PlotTab;
 use crate::study::StudySetup;
-use crate::view::PlotTab;
 
 /// How a plot is written.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -9,10 +9,10 @@ use egui::Color32;
 
 use crate::compare::Race;
 use crate::figure::{Figure, Note, Series, Style, YTicks};
+use crate::plot_tab::PlotTab;
 use crate::solution::SolutionView;
 use crate::study::{Study, param_unit};
 use crate::units;
-use crate::view::PlotTab;
 
 /// Series colours, distinguishable on the dark and the light theme (and on
 /// the white of an exported SVG).

@@ -18,6 +18,7 @@ pub mod link;
 mod pacer;
 mod panels;
 mod persist;
+mod plot_tab;
 mod run;
 mod runner;
 pub mod scenes;
@@ -31,5 +32,5 @@ pub mod web;
 
 pub use app::{Options, StartRun, WorkbenchApp};
 pub use command::Command;
+pub use plot_tab::PlotTab;
 pub use run::RunMode;
-pub use view::PlotTab;

@@ -10,6 +10,7 @@ use cdca::scene::SolverKind;
 use crate::canvas::ViewSettings;
 use crate::compare::Race;
 use crate::edit::Editor;
+use crate::plot_tab::PlotTab;
 use crate::run::RunMode;
 use crate::solution::SolutionView;
 use crate::study::{Study, StudySetup};
@@ -19,32 +20,6 @@ use crate::study::{Study, StudySetup};
 pub enum Message {
     Error(String),
     Info(String),
-}
-
-/// Which plot the bottom panel shows.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum PlotTab {
-    #[default]
-    ResidualBySweep,
-    ResidualByTime,
-    Sifs,
-    Angles,
-    LoadFactor,
-    SolverComparison,
-    /// A parameter study: kink angle and mode against one parameter.
-    Study,
-}
-
-impl PlotTab {
-    /// The plot that has something to show for `scene` before any run: the
-    /// residual for an iterative solver, the SIFs for the direct one.
-    pub fn fitting(scene: &SceneFile) -> Self {
-        if scene.solver.kind == cdca::scene::SolverKind::Direct {
-            Self::Sifs
-        } else {
-            Self::ResidualBySweep
-        }
-    }
 }
 
 /// The solver's progress as the panels show it.

@@ -14,9 +14,10 @@ use crate::command::{Command, Export, PlotFormat};
 use crate::compare::Race;
 use crate::figure::{Figure, Style, YTicks, tick_label, tick_step};
 use crate::figures::figures;
+use crate::plot_tab::PlotTab;
 use crate::study::{SUGGESTED_PATHS, Study, StudySetup, param_unit};
 use crate::units;
-use crate::view::{AppView, PlotTab};
+use crate::view::AppView;
 
 const TABS: [(PlotTab, &str); 7] = [
     (PlotTab::ResidualBySweep, "Residual / sweeps"),

@@ -1,0 +1,30 @@
+//! Which plot the bottom panel shows: named by commands, the view, the
+//! figures and the panels alike, so it sits below all of them.
+
+use cdca::scene::SceneFile;
+
+/// Which plot the bottom panel shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PlotTab {
+    #[default]
+    ResidualBySweep,
+    ResidualByTime,
+    Sifs,
+    Angles,
+    LoadFactor,
+    SolverComparison,
+    /// A parameter study: kink angle and mode against one parameter.
+    Study,
+}
+
+impl PlotTab {
+    /// The plot that has something to show for `scene` before any run: the
+    /// residual for an iterative solver, the SIFs for the direct one.
+    pub fn fitting(scene: &SceneFile) -> Self {
+        if scene.solver.kind == cdca::scene::SolverKind::Direct {
+            Self::Sifs
+        } else {
+            Self::ResidualBySweep
+        }
+    }
+}

@@ -5,7 +5,7 @@
 
 use cdca::report::{GrowthStepReport, IntactRockReport, Outcome, TipReport};
 use cdca::scene::SolverKind;
-use cdca::{ContactPointView, RelaxStatus, ResidualSample, Simulation};
+use cdca::{ContactPointView, ContactState, RelaxStatus, ResidualSample, Simulation};
 use egui_plot::PlotPoint;
 
 /// Longest series handed to a plot; longer histories are decimated.
@@ -51,6 +51,11 @@ pub struct SolutionView {
     pub split: bool,
     /// The rock away from the cracks against its strength, when solved.
     pub intact_rock: Option<IntactRockReport>,
+    /// Crack-face points in contact (stick or slip) at the last solve of
+    /// this scene; `None` before one, or without face points. Kept while
+    /// the next solve runs, so that the panels do not flicker while a tip
+    /// is dragged (see [`all_faces_open`](Self::all_faces_open)).
+    pub closed_at_last_solve: Option<usize>,
 }
 
 impl SolutionView {
@@ -91,6 +96,14 @@ impl SolutionView {
         } else {
             self.contact.clear();
         }
+        if solved {
+            self.closed_at_last_solve = (!self.contact.is_empty()).then(|| {
+                self.contact
+                    .iter()
+                    .filter(|c| c.state != ContactState::Open)
+                    .count()
+            });
+        }
     }
 
     /// The final cracks' solve found the specimen split: nothing of that
@@ -103,6 +116,12 @@ impl SolutionView {
         self.tips.clear();
         self.contact.clear();
         self.intact_rock = None;
+    }
+
+    /// The last solve found every crack-face point open: friction,
+    /// cohesion and the contact iteration's settings have nothing to act on.
+    pub fn all_faces_open(&self) -> bool {
+        self.closed_at_last_solve == Some(0)
     }
 
     /// A displacement field can be sampled: a solution, or the iterate of

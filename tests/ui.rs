@@ -282,6 +282,56 @@ fn panels_show_only_what_the_scene_can_use() {
     assert!(h.query_by_label("Over-relaxation ω").is_some());
 }
 
+/// Contact settings go once a solve shows every crack face open (the
+/// bundled centre crack under tension), and stay hidden while the next
+/// solve runs; the default scene's closed flaw keeps them. A point
+/// support's remove button stays inside the panel.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn contact_settings_are_left_out_where_every_face_is_open() {
+    let mut h = harness(Options::default());
+    h.run_steps(20);
+    assert!(h.state().is_solved());
+    for label in [
+        "Contact tolerance",
+        "Max contact iterations",
+        "Traction arrows",
+    ] {
+        assert!(h.query_by_label(label).is_some(), "{label}: a closed flaw");
+    }
+    h.state_mut().push(Command::OpenSceneText {
+        source: "centre_crack_tension.json".to_owned(),
+        text: include_str!("../assets/scenes/centre_crack_tension.json").to_owned(),
+    });
+    h.run_steps(20);
+    assert!(h.state().is_solved() && h.state().message().is_none());
+    for label in [
+        "Contact tolerance",
+        "Max contact iterations",
+        "Traction arrows",
+    ] {
+        assert!(
+            h.query_by_label(label).is_none(),
+            "{label}: every face open"
+        );
+    }
+    h.get_by_label_contains("Every crack face was open at the last solve");
+    h.get_by_label_contains("friction and cohesion have no effect");
+    let remove = h.get_by_label("Remove support 2").rect();
+    let canvas = h.get_by_label(cdca_workbench::app::CANVAS_LABEL).rect();
+    assert!(
+        remove.right() <= canvas.left(),
+        "the button lies in the scene panel: {remove:?}, canvas {canvas:?}"
+    );
+    // an edit starts a new solve: the verdict of the last one holds
+    edit_scene(&mut h, |s| s.solver.contact_tolerance = 1e-9);
+    h.run_steps(1);
+    assert!(h.query_by_label("Contact tolerance").is_none());
+}
+
 /// The paper's in-sweep contact is offered with the automaton on a scene
 /// with cracks only; chosen, growth keeps the automaton (the multigrid
 /// swap cannot run it) and the acceleration option is hidden; with another

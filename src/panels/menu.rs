@@ -157,7 +157,8 @@ pub fn toolbar_ui(ui: &mut Ui, v: &AppView, state: &mut ViewState, cmds: &mut Ve
         ui.checkbox(&mut s.show_loads, "Loads & supports");
         if !v.scene.cracks.is_empty() {
             ui.checkbox(&mut s.show_contact, "Contact");
-            if s.show_contact {
+            // open faces carry no traction
+            if s.show_contact && !v.solution.all_faces_open() {
                 ui.checkbox(&mut s.show_traction_arrows, "Traction arrows");
             }
         }

@@ -1,7 +1,6 @@
 //! Scene parameters: specimen and mesh, material, boundary, cracks,
 //! criterion and growth. Only what the current scene can use is shown.
 
-use cdca::ContactState;
 use cdca::fracture::criterion::radius_and_strength;
 use cdca::scene::SceneFile;
 use cdca::scene::{
@@ -191,7 +190,8 @@ fn boundary_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
             side_ui(ui, t, "Left", &mut b.left);
             let mut remove = None;
             for (i, p) in b.points.iter().enumerate() {
-                ui.horizontal(|ui| {
+                // wrapped: the remove button stays on screen in a narrow panel
+                ui.horizontal_wrapped(|ui| {
                     let fix = match p.fix {
                         Fix::X => "x",
                         Fix::Y => "y",
@@ -228,12 +228,7 @@ fn cracks_ui(
     let penalty = 100.0 * s.material.young / h;
     // Friction and cohesion act only where faces touch: hide them once a
     // solve has shown every face point open.
-    let faces_closed = !solution.solved
-        || solution.contact.is_empty()
-        || solution
-            .contact
-            .iter()
-            .any(|c| c.state != ContactState::Open);
+    let faces_closed = !solution.all_faces_open();
     CollapsingHeader::new(format!("Cracks ({})", s.cracks.len()))
         .default_open(true)
         .show(ui, |ui| {

@@ -36,6 +36,8 @@ fn settings_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
     choice(ui, "Linear solver", &mut draft.solver.kind, &options);
     let s = &mut draft.solver;
     let iterative = s.kind != SolverKind::Direct;
+    // the contact iteration's settings, while a face can be in contact
+    let contact = !v.scene.cracks.is_empty() && !v.solution.all_faces_open();
     Grid::new("solver settings").num_columns(2).show(ui, |ui| {
         if iterative {
             quantity_row(
@@ -67,7 +69,7 @@ fn settings_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
                 omega_optimum_row(ui, &mut s.omega, draft.mesh.nx.max(draft.mesh.ny));
             }
         }
-        if !v.scene.cracks.is_empty() {
+        if contact {
             quantity_row(
                 ui,
                 &mut t,
@@ -86,7 +88,10 @@ fn settings_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
             );
         }
     });
-    if s.kind == SolverKind::Automaton && !v.scene.cracks.is_empty() {
+    if !v.scene.cracks.is_empty() && !contact {
+        ui.weak("Every crack face was open at the last solve: no contact settings apply.");
+    }
+    if s.kind == SolverKind::Automaton && contact {
         choice(
             ui,
             "Contact update",

@@ -1244,3 +1244,99 @@ fn a_shared_link_opens_its_scene_and_a_bad_one_falls_back_with_a_message() {
         "{e}"
     );
 }
+
+/// Every bundled scene, all its sections open: no widget of the side
+/// panels reaches under the canvas (a control drawn there cannot be used;
+/// the point supports' remove buttons were, on the default scene too).
+#[test]
+fn side_panels_fit_beside_the_canvas_on_every_bundled_scene() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
+    let mut names: Vec<_> = std::fs::read_dir(&dir)
+        .expect("scenes")
+        .map(|e| e.expect("entry").path())
+        .collect();
+    names.sort();
+    let mut overflow = Vec::new();
+    for path in names {
+        // tall enough that every section is on screen: widths are checked
+        let mut h = Harness::builder()
+            .with_size([SIZE[0], 2400.0])
+            .with_max_steps(400)
+            .build_ui_state(
+                |ui, app: &mut WorkbenchApp| {
+                    app.logic(ui.ctx());
+                    app.ui(ui);
+                },
+                WorkbenchApp::new(no_solver()),
+            );
+        h.run();
+        h.state_mut().push(Command::OpenSceneText {
+            source: path.display().to_string(),
+            text: std::fs::read_to_string(&path).expect("scene"),
+        });
+        h.run();
+        for header in ["Fracture criterion", "Growth"] {
+            h.get_by_label(header).click();
+            h.run();
+        }
+        let cracks: Vec<String> = h
+            .query_all_by_label_contains("points, ")
+            .filter_map(|n| n.accesskit_node().label())
+            .collect();
+        for c in cracks {
+            h.get_by_label(&c).click();
+            h.run();
+        }
+        // the sections are open
+        for label in ["Radius r0", "Control"] {
+            let shown = |n: &egui_kittest::kittest::AccessKitNode<'_>| {
+                n.label()
+                    .or_else(|| n.value())
+                    .is_some_and(|l| l.contains(label))
+            };
+            let found = h.query_all_by(shown).count();
+            assert!(found > 0, "{label} in {}", path.display());
+        }
+        let canvas = h.get_by_label(cdca_workbench::app::CANVAS_LABEL).rect();
+        for n in h.query_all_by(|n| n.bounding_box().is_some()) {
+            let r = n.rect();
+            let node = n.accesskit_node();
+            let label = node.label().or_else(|| node.value()).unwrap_or_default();
+            let left = r.left() < canvas.left() - 0.5 && r.right() > canvas.left() + 0.5;
+            let right = r.left() < canvas.right() - 0.5 && r.right() > canvas.right() + 0.5;
+            // below the toolbar; the plots' resize handle spans the canvas,
+            // and a long name scrolls inside its text field
+            let panel = r.top() >= canvas.top()
+                && label != "Resize panel"
+                && node.role() != egui::accesskit::Role::TextRun;
+            if (left || right) && panel && !label.is_empty() {
+                overflow.push(format!("{}: {label:?} {r:?}", path.display()));
+            }
+        }
+    }
+    assert!(overflow.is_empty(), "{}", overflow.join("\n"));
+}
+
+/// Joint stiffness reads in GPa/m, the unit of the paper's joint
+/// (200 / 20 GPa/m): the default penalty 100 E/h of the default scene
+/// (E = 4.78 GPa, h = 0.5 mm) is 9.56e5 GPa/m, and a scene with the paper's
+/// joint shows 200 and 20. (The panel showed Pa/m ÷ 1e6 labelled GPa/mm.)
+#[test]
+fn joint_stiffness_is_shown_in_gpa_per_metre() {
+    let mut h = harness(no_solver());
+    h.run();
+    h.get_by_label_contains("Crack 1: 2 points").click();
+    h.run();
+    let text = |h: &Harness<'_, WorkbenchApp>, t: &str| {
+        h.query_all_by(|n| n.value().as_deref() == Some(t)).count()
+    };
+    assert!(text(&h, "9.560e5 GPa/m") > 0, "the auto k_N");
+    assert!(text(&h, "95600 GPa/m") > 0, "the auto k_T = k_N/10");
+    edit_scene(&mut h, |s| {
+        s.cracks[0].normal_stiffness = Some(200e9);
+        s.cracks[0].shear_stiffness = Some(20e9);
+    });
+    h.run();
+    assert!(text(&h, "200 GPa/m") > 0, "k_N typed");
+    assert!(text(&h, "20.0 GPa/m") > 0, "k_T typed");
+}

@@ -276,21 +276,21 @@ fn cracks_ui(
                                 optional_row(
                                     ui,
                                     t,
-                                    "Normal stiffness k_N",
+                                    "Normal k_N",
                                     &mut crack.normal_stiffness,
                                     penalty,
-                                    PA_PER_GPA / MM_PER_M,
-                                    "GPa/mm",
+                                    PA_PER_GPA,
+                                    "GPa/m",
                                 );
                                 let kt = crack.normal_stiffness.unwrap_or(penalty) / 10.0;
                                 optional_row(
                                     ui,
                                     t,
-                                    "Shear stiffness k_T",
+                                    "Shear k_T",
                                     &mut crack.shear_stiffness,
                                     kt,
-                                    PA_PER_GPA / MM_PER_M,
-                                    "GPa/mm",
+                                    PA_PER_GPA,
+                                    "GPa/m",
                                 );
                             });
                         }

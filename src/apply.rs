@@ -109,7 +109,13 @@ impl WorkbenchApp {
             }
             Command::CompareSolvers { time_cap } => {
                 self.runner.pause();
-                match self.runner.checked() {
+                // the race's reference is the direct solution
+                let checked = self.runner.checked().and_then(|s| {
+                    let mut file = cdca::scene::SceneFile::clone(s);
+                    file.solver.kind = cdca::scene::SolverKind::Direct;
+                    crate::runner::interactive_mesh(&file).map(|()| s)
+                });
+                match checked {
                     Ok(scene) => self.race = Some(Race::new(scene, time_cap)),
                     Err(e) => {
                         let e = format!("The race cannot run: {e}");

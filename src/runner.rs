@@ -63,6 +63,8 @@ pub struct Runner {
     stale: bool,
     /// Wall time of the last full solve, s.
     last_solve_seconds: Option<f64>,
+    /// Elements of the mesh of that solve.
+    last_solve_elements: usize,
     /// Wall time of the last `Simulation::new`, s.
     last_build_seconds: f64,
     /// Growth with the automaton runs the multigrid-accelerated automaton.
@@ -91,6 +93,7 @@ impl Default for Runner {
             field: FieldSampler::default(),
             stale: false,
             last_solve_seconds: None,
+            last_solve_elements: 0,
             last_build_seconds: 0.0,
             accelerate_growth: true,
             growth_ready: false,
@@ -103,6 +106,44 @@ impl Default for Runner {
 
 /// Full solves faster than this are redone automatically after an edit.
 pub const QUICK_SOLVE_SECONDS: f64 = 0.25;
+
+/// Largest mesh the workbench solves with the direct solver, in elements
+/// (400 × 400). Its factorisation is one piece of work, which holds the
+/// window still while it runs: natively 1.3 s and 0.45 GB at 300 × 300,
+/// 3.3 s and 0.8 GB at 400 × 400, 26 s and 4.7 GB at 800 × 800 (more than
+/// a browser tab can have). The iterative solvers work in slices and show
+/// their progress.
+pub const DIRECT_MAX_ELEMENTS: usize = 160_000;
+
+/// Largest mesh the workbench takes with any solver, in elements (800 ×
+/// 800: 1.1 GB with multigrid-CG, within a browser tab's 4 GB). The
+/// command line takes up to [`cdca::scene::MAX_ELEMENTS`].
+pub const MAX_ELEMENTS: usize = 640_000;
+
+/// Refuses, before any work, a mesh the workbench cannot solve without
+/// holding the window still or running out of memory, naming the limit and
+/// the way round it.
+pub fn interactive_mesh(scene: &SceneFile) -> Result<(), String> {
+    let (nx, ny) = (scene.mesh.nx, scene.mesh.ny);
+    let n = nx.saturating_mul(ny);
+    let field = format!("scene field `mesh` = {nx} × {ny} ({n} elements)");
+    if n > MAX_ELEMENTS {
+        Err(format!(
+            "{field}: the workbench takes up to {MAX_ELEMENTS} elements (800 × 800, \
+             about 1.1 GB with multigrid-CG); run finer meshes with `cdca solve` or \
+             `cdca grow` from the command line"
+        ))
+    } else if scene.solver.kind == SolverKind::Direct && n > DIRECT_MAX_ELEMENTS {
+        Err(format!(
+            "{field}: the direct solver factorises the whole mesh in one piece, which \
+             would hold the window still (400 × 400 takes 3.3 s); it is offered up to \
+             {DIRECT_MAX_ELEMENTS} elements. Choose multigrid-CG, which solves in slices \
+             and shows its progress, or use the command line"
+        ))
+    } else {
+        Ok(())
+    }
+}
 
 impl Runner {
     // --- what the UI reads ----------------------------------------------
@@ -163,15 +204,20 @@ impl Runner {
     }
 
     /// Whether a re-solve of `scene` after an edit is cheap enough to do
-    /// unasked: the direct solver, and the last build and solve was quick
-    /// (before any, meshes up to 80 × 80).
+    /// unasked: the direct solver, the last build and solve was quick, and
+    /// the mesh has at most four times the elements of that solve's (or of
+    /// 80 × 80; before any solve, meshes up to 80 × 80). A direct solve grows
+    /// faster than the mesh (200² → 400² took 5.9 times as long), so a mesh
+    /// refined tenfold in the panel waits for Solve instead of holding the
+    /// window still.
     pub fn solve_is_quick(&self, scene: &SceneFile) -> bool {
+        const SMALL: usize = 6400;
+        let n = scene.mesh.nx.saturating_mul(scene.mesh.ny);
         scene.solver.kind == SolverKind::Direct
-            && self
-                .last_solve_seconds
-                .map_or(scene.mesh.nx * scene.mesh.ny <= 6400, |s| {
-                    s + self.last_build_seconds < QUICK_SOLVE_SECONDS
-                })
+            && self.last_solve_seconds.map_or(n <= SMALL, |s| {
+                s + self.last_build_seconds < QUICK_SOLVE_SECONDS
+                    && n <= 4 * self.last_solve_elements.max(SMALL)
+            })
     }
 
     /// The solver growth uses (or will use) on this simulation, or on a
@@ -197,7 +243,8 @@ impl Runner {
         self.view.clear();
         self.field.clear();
         self.stale = true;
-        self.checked = Scene::try_from(scene.clone()).map_err(|e| e.to_string());
+        self.checked = interactive_mesh(scene)
+            .and_then(|()| Scene::try_from(scene.clone()).map_err(|e| e.to_string()));
         self.checked.as_ref().map(|_| ()).map_err(Clone::clone)
     }
 
@@ -234,6 +281,8 @@ impl Runner {
         let start = Instant::now();
         let result = sim.solve();
         self.last_solve_seconds = Some(start.elapsed().as_secs_f64());
+        let mesh = &sim.scene().mesh;
+        self.last_solve_elements = mesh.nx * mesh.ny;
         self.refresh(true, None);
         result.map(|_| ()).map_err(|e| e.to_string())
     }

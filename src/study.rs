@@ -179,6 +179,7 @@ impl Study {
             .with_param(&self.path, value)
             .and_then(|s| s.edit(|f| f.solver = growth_solver(&f.solver, accelerate)))
             .map_err(|e| e.to_string())?;
+        crate::runner::interactive_mesh(&scene)?;
         Simulation::new(scene).map_err(|e| e.to_string())
     }
 

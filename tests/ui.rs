@@ -1340,3 +1340,82 @@ fn joint_stiffness_is_shown_in_gpa_per_metre() {
     assert!(text(&h, "200 GPa/m") > 0, "k_N typed");
     assert!(text(&h, "20.0 GPa/m") > 0, "k_T typed");
 }
+
+/// A mesh refined in the panel does not start a solve that holds the
+/// window still or exhausts a browser tab's memory: over 800 × 800 any
+/// solver, and over 400 × 400 the direct solver (one factorisation in one
+/// piece), are refused before any work with the limit and the way round
+/// it; a finer mesh under the limit waits for Solve when the last solve,
+/// scaled to it, would not be quick (60² → 200²: 11× the elements).
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn a_mesh_too_fine_to_solve_at_once_is_refused_or_waits_for_solve() {
+    use cdca::scene::SolverKind;
+    let mut h = harness(Options::default());
+    h.run_steps(20);
+    assert!(h.state().is_solved());
+    let error = |h: &Harness<'_, WorkbenchApp>| match h.state().message() {
+        Some(Message::Error(e)) => e.clone(),
+        m => panic!("an error expected, got {m:?}"),
+    };
+    edit_scene(&mut h, |s| (s.mesh.nx, s.mesh.ny) = (1000, 1000));
+    h.run();
+    let e = error(&h);
+    assert!(
+        e.contains("`mesh` = 1000 × 1000") && e.contains("up to 640000 elements"),
+        "{e}"
+    );
+    assert!(!h.state().is_solved());
+    edit_scene(&mut h, |s| (s.mesh.nx, s.mesh.ny) = (500, 500));
+    h.run();
+    let e = error(&h);
+    assert!(
+        e.contains("direct solver") && e.contains("multigrid-CG"),
+        "{e}"
+    );
+    // the race needs the direct solution too
+    edit_scene(&mut h, |s| s.solver.kind = SolverKind::Multigrid);
+    h.run();
+    assert!(h.state().message().is_none(), "{:?}", h.state().message());
+    h.get_by_label("Compare solvers").click();
+    h.run();
+    assert!(error(&h).starts_with("The race cannot run"));
+    edit_scene(&mut h, |s| {
+        s.solver.kind = SolverKind::Direct;
+        (s.mesh.nx, s.mesh.ny) = (200, 200);
+    });
+    h.run();
+    assert!(h.state().message().is_none(), "{:?}", h.state().message());
+    assert!(!h.state().is_solved(), "not solved unasked");
+    h.get_by_label("Scene changed — press Solve.");
+}
+
+/// A scene whose values lie outside the panels' ranges (face friction 10,
+/// a 500 × 500 mesh for multigrid-CG) opens as it is: the panels show the
+/// values without clamping them, and opening it is the only undo step.
+/// (The panels used to write friction 5 and a 400 × 400 mesh back at the
+/// first frame.)
+#[test]
+fn opening_a_scene_never_changes_it() {
+    let mut h = harness(no_solver());
+    h.run();
+    let mut scene = h.state().scene().clone();
+    scene.cracks[0].friction = 10.0;
+    (scene.mesh.nx, scene.mesh.ny) = (500, 500);
+    scene.solver.kind = cdca::scene::SolverKind::Multigrid;
+    h.state_mut().push(Command::OpenSceneText {
+        source: "wide.json".to_owned(),
+        text: serde_json::to_string(&scene).expect("json"),
+    });
+    h.run_steps(5);
+    h.get_by_label_contains("Crack 1: 2 points").click();
+    h.run_steps(5);
+    assert!(h.state().message().is_none(), "{:?}", h.state().message());
+    assert_eq!(*h.state().scene(), scene);
+    h.get_by_label("Undo").click();
+    h.run();
+    assert_ne!(*h.state().scene(), scene, "one undo step: the opening");
+}

@@ -62,8 +62,8 @@ fn specimen_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
                     "mm",
                     1e-3..=1e5,
                 );
-                count_row(ui, t, "Elements along x", &mut s.mesh.nx, 1..=400);
-                count_row(ui, t, "Elements along y", &mut s.mesh.ny, 1..=400);
+                count_row(ui, t, "Elements along x", &mut s.mesh.nx, 1..=800);
+                count_row(ui, t, "Elements along y", &mut s.mesh.ny, 1..=800);
                 ui.label("Element size");
                 ui.label(units::mm(s.element_size()));
                 ui.end_row();

@@ -1,6 +1,9 @@
 //! Small editing widgets: numbers shown in display units and written back
 //! in SI, optional values with an "auto" box, and a tracker that turns
-//! widget responses into one scene edit per frame.
+//! widget responses into one scene edit per frame. A value outside a
+//! widget's range (from a scene file) is shown as it is, not clamped: only
+//! what the user edits is held to the range, so opening a scene never
+//! changes it.
 
 use std::ops::RangeInclusive;
 
@@ -46,6 +49,7 @@ pub fn quantity_row(
             DragValue::new(&mut v)
                 .speed(speed)
                 .range(range)
+                .clamp_existing_to_range(false)
                 .suffix(suffix)
                 .custom_formatter(|v, _| crate::units::significant(v)),
         )
@@ -67,7 +71,12 @@ pub fn count_row(
 ) {
     let l = ui.label(label);
     let r = ui
-        .add(DragValue::new(value).speed(0.2).range(range))
+        .add(
+            DragValue::new(value)
+                .speed(0.2)
+                .range(range)
+                .clamp_existing_to_range(false),
+        )
         .labelled_by(l.id);
     t.track(&r);
     ui.end_row();
@@ -99,6 +108,7 @@ pub fn optional_row(
                     DragValue::new(&mut v)
                         .speed(speed)
                         .range(0.0..=f64::MAX)
+                        .clamp_existing_to_range(false)
                         .suffix(format!(" {unit}")),
                 )
                 .labelled_by(l.id);

@@ -430,6 +430,32 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
             ui.end_row();
         }
     });
+    stepped_around_ui(ui, &view.history);
+}
+
+/// Steps whose λ_cr search moved away from a trial that did not converge
+/// (`unsolved_trials`): said under the status, the loads on hover.
+fn stepped_around_ui(ui: &mut Ui, history: &[cdca::report::GrowthStepReport]) {
+    let steps: Vec<String> = history
+        .iter()
+        .filter(|s| !s.unsolved_trials.is_empty())
+        .map(|s| {
+            let at: Vec<String> = s
+                .unsolved_trials
+                .iter()
+                .map(|l| format!("{l:.4}"))
+                .collect();
+            format!("step {}: λ = {}", s.step, at.join(", "))
+        })
+        .collect();
+    if !steps.is_empty() {
+        ui.weak(format!(
+            "{} growth step(s) stepped around a λ_cr trial whose solve did not converge; \
+             λ_cr is a converged trial (hover for the loads).",
+            steps.len()
+        ))
+        .on_hover_text(steps.join("\n"));
+    }
 }
 
 /// The rock away from the cracks against its own strength: its median

@@ -37,6 +37,23 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         let when = format!("from step {} (λ = {:.3})", s.step, s.load_factor);
         output::note_intact_rock(&when, s.intact_rock.as_ref());
     }
+    for s in report
+        .steps
+        .iter()
+        .filter(|s| !s.unsolved_trials.is_empty())
+    {
+        let at: Vec<String> = s
+            .unsolved_trials
+            .iter()
+            .map(|l| format!("{l:.4}"))
+            .collect();
+        eprintln!(
+            "cdca: note: step {}: the λ_cr search moved away from trials whose solve did \
+             not converge, at λ = {} (`unsolved_trials`)",
+            s.step,
+            at.join(", ")
+        );
+    }
     // the report is printed either way; growth stopped on an unconverged
     // solve exits 1, on an error with that error's code
     if let Some(e) = failed {

@@ -186,6 +186,13 @@ pub struct GrowthStepReport {
     /// load (left out for a rock without cohesion).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub intact_rock: Option<IntactRockReport>,
+    /// Load factors of this step's λ_cr trials whose solve did not
+    /// converge (at most three; left out when none). The search moved away
+    /// from them, so `load_factor` is the lowest root among the converged
+    /// trials, and one between an unsolved trial and the bracket may have
+    /// been passed over.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub unsolved_trials: Vec<f64>,
 }
 
 /// A tip that grew in a step: its new position and how it grew.

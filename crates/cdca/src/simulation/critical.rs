@@ -6,7 +6,7 @@
 
 use web_time::Instant;
 
-use super::search::{CriticalRun, Next, Search, Snapshot};
+use super::search::{CriticalRun, MAX_UNSOLVED, Next, Search, Snapshot};
 use super::state::Simulation;
 use crate::contact::law::FaceState;
 use crate::report::GrowthStepReport;
@@ -39,6 +39,7 @@ impl Simulation {
             search: Search::new(g.max_load_factor),
             base_faces: vec![FaceState::default(); self.state.faces.len()],
             best: None,
+            unsolved: Vec::new(),
             start: Instant::now(),
             ended: None,
         });
@@ -84,12 +85,34 @@ impl Simulation {
         let seconds = run.start.elapsed().as_secs_f64();
         let report = self.report(seconds);
         if let Some(next) = run.ended {
-            return Some(self.finish_growth_step(&report, run.start, next != Next::Failed));
-        }
-        if !report.converged() {
-            return Some(self.finish_growth_step(&report, run.start, true));
+            return Some(self.finish_growth_step(
+                &report,
+                run.start,
+                next != Next::Failed,
+                &run.unsolved,
+            ));
         }
         let (lambda, u) = (self.state.lambda, self.utilisation());
+        if !report.converged() {
+            // a solve that does not converge says nothing about U(λ): move
+            // away from it (near a split the contact iteration can cycle at
+            // one load and settle at another), a few times per step
+            let next = (run.unsolved.len() < MAX_UNSOLVED)
+                .then(|| run.search.unsolved(lambda))
+                .flatten();
+            run.unsolved.push(lambda);
+            let Some(next) = next else {
+                return Some(self.finish_growth_step(&report, run.start, true, &run.unsolved));
+            };
+            // the next trial starts from the lowest converged one above
+            let guess = run.best.as_ref().map(|b| b.faces.clone());
+            self.scratch.critical = Some(run);
+            self.start_trial(next);
+            if guess.is_some() {
+                self.scratch.contact_guess = guess;
+            }
+            return None;
+        }
         if u >= 1.0 && run.best.as_ref().is_none_or(|b| lambda < b.lambda) {
             run.best = Some(self.snapshot());
         }
@@ -99,7 +122,9 @@ impl Simulation {
                 self.start_trial(next);
                 None
             }
-            Next::Exceeded => Some(self.finish_growth_step(&report, run.start, true)),
+            Next::Exceeded => {
+                Some(self.finish_growth_step(&report, run.start, true, &run.unsolved))
+            }
             next => {
                 if let Some(best) = run.best.take() {
                     self.restore(best);

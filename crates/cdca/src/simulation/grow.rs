@@ -115,7 +115,7 @@ impl Simulation {
         }
         self.scratch.growth_start = None;
         let report = self.report(start.elapsed().as_secs_f64());
-        Ok(Some(self.finish_growth_step(&report, start, true)))
+        Ok(Some(self.finish_growth_step(&report, start, true, &[])))
     }
 
     /// One chunk of what a rebuild after growth left to do (see
@@ -153,6 +153,7 @@ impl Simulation {
         report: &SolveReport,
         start: Instant,
         search_closed: bool,
+        unsolved: &[f64],
     ) -> GrowthStepReport {
         let critical = self.critical_control();
         let g = &self.model.scene.growth;
@@ -197,6 +198,7 @@ impl Simulation {
             crack_length: 0.0,
             tips: report.tips.clone(),
             intact_rock: self.intact_rock(),
+            unsolved_trials: unsolved.to_vec(),
         };
         if !step.converged {
             self.state.outcome = Some(Outcome::NotConverged);

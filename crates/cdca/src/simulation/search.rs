@@ -13,6 +13,10 @@
 //! to trial are initial guesses only: the displacement (scaled by the load
 //! ratio) for the iterative solvers, and the contact states (open, stick or
 //! slip) the contact iteration starts from.
+//!
+//! A trial whose solve does not converge is not a point of `U(λ)`: the
+//! search moves away from it ([`Search::unsolved`]) a few times per step
+//! before it records the step unconverged.
 
 use web_time::Instant;
 
@@ -42,6 +46,10 @@ const TARGET: f64 = 1.0 + 0.5 * UTILISATION_BAND;
 /// Trial solves per step before the search gives up (the step is then
 /// recorded unconverged).
 pub const MAX_TRIALS: usize = 60;
+
+/// Trials per step whose solve may fail to converge before the step is
+/// recorded unconverged (see [`Search::unsolved`]).
+pub const MAX_UNSOLVED: usize = 3;
 
 /// Largest factor by which one trial raises λ while no tip meets its
 /// criterion.
@@ -161,6 +169,26 @@ impl Search {
     }
 }
 
+impl Search {
+    /// A trial at `lambda` whose solve did not converge: it says nothing
+    /// about `U`, so the bracket stays as it is and the next trial moves
+    /// away from it, to the middle between it and the bracket's upper end
+    /// (a converged solve above) when there is one, otherwise to the middle
+    /// between it and the lower end. `None` when no trial is left.
+    pub(super) fn unsolved(&mut self, lambda: f64) -> Option<f64> {
+        self.trials += 1;
+        if self.trials >= MAX_TRIALS {
+            return None;
+        }
+        let other = match self.hi {
+            Some(hi) if lambda < hi.0 => hi.0,
+            _ => self.lo.0,
+        };
+        let next = 0.5 * (lambda + other);
+        (next > 0.0 && (next - lambda).abs() > LAMBDA_TOLERANCE * lambda).then_some(next)
+    }
+}
+
 /// The solved state of one trial, kept while it is the bracket's upper end.
 pub(super) struct Snapshot {
     pub(super) lambda: f64,
@@ -181,6 +209,9 @@ pub(super) struct CriticalRun {
     pub(super) base_faces: Vec<FaceState>,
     /// The lowest trial so far that meets the criterion.
     pub(super) best: Option<Snapshot>,
+    /// Load factors of the trials whose solve did not converge (the search
+    /// moved away from them).
+    pub(super) unsolved: Vec<f64>,
     pub(super) start: Instant,
     /// The search's verdict once it has ended (the state then holds the
     /// solve at λ_cr, shown before the tips are extended).
@@ -250,6 +281,44 @@ mod tests {
             }
         }
         assert_eq!(find(|l| l / 200.0, 1.0, 100.0).0, None);
+    }
+
+    /// Solves that do not converge in a band of λ (as near a split, where
+    /// the contact iteration cycles) are stepped around: with a step
+    /// response (`U` = 0.2 below λ = 2.37, 3 above), unsolved on
+    /// (0.5, 1.5), and a first trial at 9, the regula falsi's second trial
+    /// (λ = 3) and third (1.0, unsolved) lead on to 2.0 and the search ends
+    /// at the root; with everything below the root unsolved it gives up
+    /// after [`MAX_UNSOLVED`] of them.
+    #[test]
+    fn unsolved_trials_are_stepped_around() {
+        let root = 2.37;
+        let run = |bad: &dyn Fn(f64) -> bool| -> (Option<f64>, usize) {
+            let mut s = Search::new(100.0);
+            let (mut lambda, mut unsolved) = (9.0, 0);
+            for _ in 0..MAX_TRIALS {
+                if bad(lambda) {
+                    unsolved += 1;
+                    match s.unsolved(lambda).filter(|_| unsolved <= MAX_UNSOLVED) {
+                        Some(next) => lambda = next,
+                        None => return (None, unsolved),
+                    }
+                    continue;
+                }
+                match s.record(lambda, if lambda < root { 0.2 } else { 3.0 }) {
+                    Next::Trial(l) => lambda = l,
+                    Next::Found(l) => return (Some(l), unsolved),
+                    Next::Exceeded | Next::Failed => return (None, unsolved),
+                }
+            }
+            (None, unsolved)
+        };
+        let (l, unsolved) = run(&|l| (0.5..1.5).contains(&l));
+        let l = l.expect("found around the unsolved band");
+        assert!(l >= root && l <= root / (1.0 - LAMBDA_TOLERANCE), "{l}");
+        assert!((1..=MAX_UNSOLVED).contains(&unsolved), "{unsolved}");
+        let (l, unsolved) = run(&|l| l < root * 0.999);
+        assert_eq!((l, unsolved), (None, MAX_UNSOLVED + 1));
     }
 
     /// A response that saturates below 1 (`U = 0.9 (1 − e^−λ)`, as a tip

@@ -531,7 +531,7 @@ impl WorkbenchApp {
             });
         egui::Panel::right("solver")
             .resizable(true)
-            .default_size(310.0)
+            .default_size(330.0)
             .size_range(240.0..=600.0)
             .show(ui, |ui| {
                 fixed_width_scroll(ui, "solver scroll", |ui| {

@@ -905,6 +905,9 @@ fn a_friction_study_records_the_first_growth_of_each_value() {
             .is_some(),
         "the λ_cr plot's legend names the rock's line"
     );
+    // plots and table fit between the side panels
+    let overflow = widgets_under_the_canvas(&h);
+    assert!(overflow.is_empty(), "{}", overflow.join("\n"));
 }
 
 /// A relaxation stopped at its cap (the automaton with at most 50 sweeps,
@@ -1245,6 +1248,33 @@ fn a_shared_link_opens_its_scene_and_a_bad_one_falls_back_with_a_message() {
     );
 }
 
+/// Side-panel widgets (label or text, and rect) that reach under the
+/// canvas or, in the right panel, under its scroll bar at the window's edge
+/// (the last 10 px of the [`SIZE`] wide window): a control drawn there
+/// cannot be used, nor a text read, without scrolling sideways.
+fn widgets_under_the_canvas(h: &Harness<'_, WorkbenchApp>) -> Vec<String> {
+    let canvas = h.get_by_label(cdca_workbench::app::CANVAS_LABEL).rect();
+    let edge = SIZE[0] - 10.0;
+    let mut out = Vec::new();
+    for n in h.query_all_by(|n| n.bounding_box().is_some()) {
+        let r = n.rect();
+        let node = n.accesskit_node();
+        let label = node.label().or_else(|| node.value()).unwrap_or_default();
+        let left = r.left() < canvas.left() - 0.5 && r.right() > canvas.left() + 0.5;
+        let right = r.left() < canvas.right() - 0.5 && r.right() > canvas.right() + 0.5
+            || r.left() > canvas.right() && r.right() > edge;
+        // below the toolbar; the plots' resize handle spans the canvas, and
+        // a long name scrolls inside its text field
+        let panel = r.top() >= canvas.top()
+            && label != "Resize panel"
+            && node.role() != egui::accesskit::Role::TextRun;
+        if (left || right) && panel && !label.is_empty() {
+            out.push(format!("{label:?} {r:?}"));
+        }
+    }
+    out
+}
+
 /// Every bundled scene, all its sections open: no widget of the side
 /// panels reaches under the canvas (a control drawn there cannot be used;
 /// the point supports' remove buttons were, on the default scene too).
@@ -1297,21 +1327,8 @@ fn side_panels_fit_beside_the_canvas_on_every_bundled_scene() {
             let found = h.query_all_by(shown).count();
             assert!(found > 0, "{label} in {}", path.display());
         }
-        let canvas = h.get_by_label(cdca_workbench::app::CANVAS_LABEL).rect();
-        for n in h.query_all_by(|n| n.bounding_box().is_some()) {
-            let r = n.rect();
-            let node = n.accesskit_node();
-            let label = node.label().or_else(|| node.value()).unwrap_or_default();
-            let left = r.left() < canvas.left() - 0.5 && r.right() > canvas.left() + 0.5;
-            let right = r.left() < canvas.right() - 0.5 && r.right() > canvas.right() + 0.5;
-            // below the toolbar; the plots' resize handle spans the canvas,
-            // and a long name scrolls inside its text field
-            let panel = r.top() >= canvas.top()
-                && label != "Resize panel"
-                && node.role() != egui::accesskit::Role::TextRun;
-            if (left || right) && panel && !label.is_empty() {
-                overflow.push(format!("{}: {label:?} {r:?}", path.display()));
-            }
+        for w in widgets_under_the_canvas(&h) {
+            overflow.push(format!("{}: {w}", path.display()));
         }
     }
     assert!(overflow.is_empty(), "{}", overflow.join("\n"));
@@ -1424,7 +1441,7 @@ fn opening_a_scene_never_changes_it() {
 /// (held-out random layout 0 of the second seed, see the solver test
 /// `a_trial_that_does_not_converge_is_stepped_around`) ends `through` with
 /// every step converged, and the status says which step stepped around
-/// which load.
+/// which load; the finished run's status fits the solver panel.
 #[test]
 #[cfg_attr(
     debug_assertions,
@@ -1462,4 +1479,7 @@ fn a_step_that_stepped_around_an_unsolved_trial_says_so() {
     assert_eq!(app.growth_outcome(), Some(cdca::report::Outcome::Through));
     assert!(app.growth_history().iter().all(|s| s.converged));
     h.get_by_label_contains("1 growth step(s) stepped around a λ_cr trial");
+    // the status of a finished run fits its panel
+    let overflow = widgets_under_the_canvas(&h);
+    assert!(overflow.is_empty(), "{}", overflow.join("\n"));
 }

@@ -301,13 +301,31 @@ fn study_ui(
             format!("Some values failed: {e}"),
         );
     }
-    ui.columns(3, |cols| {
+    // the table at its own width (five short columns), the two plots
+    // sharing the rest: equal thirds squeezed the table past the panel
+    // once the canvas was narrower than about 800 px
+    let gap = ui.spacing().item_spacing.x;
+    let table = STUDY_TABLE_WIDTH.min(0.4 * ui.available_width());
+    let plot = ((ui.available_width() - table - 2.0 * gap) / 2.0).max(0.0);
+    let height = ui.available_height();
+    let down = egui::Layout::top_down(egui::Align::Min);
+    ui.horizontal_top(|ui| {
         for (i, fig) in figs.iter().enumerate().take(2) {
-            cols[i].push_id(i, |ui| figure_ui(ui, PlotTab::Study, i, fig, cmds));
+            ui.allocate_ui_with_layout(egui::vec2(plot, height), down, |ui| {
+                ui.set_width(plot);
+                ui.push_id(i, |ui| figure_ui(ui, PlotTab::Study, i, fig, cmds));
+            });
         }
-        study_table(&mut cols[2], study);
+        ui.allocate_ui_with_layout(egui::vec2(table, height), down, |ui| {
+            ui.set_width(table);
+            study_table(ui, study);
+        });
     });
 }
+
+/// Width of the Study tab's table, px: its five columns at their widest
+/// (a parameter such as "friction [–]", λ_cr, θ, the mode, u).
+const STUDY_TABLE_WIDTH: f32 = 250.0;
 
 /// The measured values: parameter, λ_cr, first kink angle and mode, and
 /// the intact rock's utilisation of its strength at λ_cr.

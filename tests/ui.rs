@@ -280,6 +280,20 @@ fn panels_show_only_what_the_scene_can_use() {
     });
     h.run();
     assert!(h.query_by_label("Over-relaxation ω").is_some());
+    // K_IIC only where it sets a strength: the comprehensive criterion's
+    // shear branch on the faces (c_c + K_IIC/√(2π r0))
+    assert!(h.query_by_label("Shear toughness K_IIC").is_some());
+    edit_scene(&mut h, |s| {
+        s.criterion.shear_strength = cdca::scene::ShearStrength::Rock;
+    });
+    h.run();
+    assert!(h.query_by_label("Shear toughness K_IIC").is_none());
+    edit_scene(&mut h, |s| {
+        s.criterion.shear_strength = cdca::scene::ShearStrength::Faces;
+        s.criterion.kind = cdca::scene::CriterionKind::Mts;
+    });
+    h.run();
+    assert!(h.query_by_label("Shear toughness K_IIC").is_none());
 }
 
 /// Contact settings go once a solve shows every crack face open (the
@@ -664,6 +678,9 @@ fn compare_from_a_cold_start_gives_falling_error_curves() {
     }
     let csv = race.to_csv();
     assert!(csv.lines().count() > race.runs.len());
+    // the race's plots, legend and summary fit between the side panels
+    let overflow = widgets_under_the_canvas(&h);
+    assert!(overflow.is_empty(), "{}", overflow.join("\n"));
 }
 
 /// The side panels keep their width as their text changes: the canvas

@@ -82,6 +82,8 @@ fn specimen_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
 
 fn material_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
     let comprehensive = s.criterion.kind == CriterionKind::Comprehensive;
+    // K_IIC sets the faces' shear strength on r0, c_c + K_IIC/√(2π r0)
+    let shear_toughness = comprehensive && s.criterion.shear_strength == ShearStrength::Faces;
     CollapsingHeader::new("Material")
         .default_open(true)
         .show(ui, |ui| {
@@ -114,6 +116,17 @@ fn material_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
                     "MPa·√m",
                     1e-6..=1e3,
                 );
+                if shear_toughness {
+                    quantity_row(
+                        ui,
+                        t,
+                        "Shear toughness K_IIC",
+                        &mut m.k_iic,
+                        PA_PER_MPA,
+                        "MPa·√m",
+                        1e-6..=1e3,
+                    );
+                }
                 if comprehensive {
                     quantity_row(
                         ui,

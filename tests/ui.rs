@@ -334,6 +334,8 @@ fn contact_settings_are_left_out_where_every_face_is_open() {
     }
     h.get_by_label_contains("Every crack face was open at the last solve");
     h.get_by_label_contains("friction and cohesion have no effect");
+    h.get_by_label_contains("Point support 2:").click();
+    h.run();
     let remove = h.get_by_label("Remove support 2").rect();
     let canvas = h.get_by_label(cdca_workbench::app::CANVAS_LABEL).rect();
     assert!(
@@ -1330,7 +1332,11 @@ fn side_panels_fit_beside_the_canvas_on_every_bundled_scene() {
             .query_all_by_label_contains("points, ")
             .filter_map(|n| n.accesskit_node().label())
             .collect();
-        for c in cracks {
+        let supports: Vec<String> = h
+            .query_all_by_label_contains("Point support ")
+            .filter_map(|n| n.accesskit_node().label())
+            .collect();
+        for c in cracks.into_iter().chain(supports) {
             h.get_by_label(&c).click();
             h.run();
         }
@@ -1499,4 +1505,42 @@ fn a_step_that_stepped_around_an_unsolved_trial_says_so() {
     // the status of a finished run fits its panel
     let overflow = widgets_under_the_canvas(&h);
     assert!(overflow.is_empty(), "{}", overflow.join("\n"));
+}
+
+/// Point supports can be added and edited, not only removed: without its
+/// point support the default specimen is refused (nothing holds it in x),
+/// "Add point support" puts one at the bottom-left corner fixing x, which
+/// makes it valid again, and its position and fixed direction are fields.
+#[test]
+fn a_point_support_can_be_added_back_and_edited() {
+    let mut h = harness(no_solver());
+    h.run();
+    h.get_by_label("Point support 1: (0, 0) mm, fixes x")
+        .click();
+    h.run();
+    h.get_by_label("Remove support 1").click();
+    h.run();
+    assert!(h.state().scene().boundary.points.is_empty());
+    assert!(
+        matches!(h.state().message(), Some(Message::Error(e)) if e.contains("boundary")),
+        "{:?}",
+        h.state().message()
+    );
+    h.get_by_label("Add point support").click();
+    h.run();
+    let points = &h.state().scene().boundary.points;
+    assert_eq!(points.len(), 1);
+    assert_eq!(
+        (points[0].at, points[0].fix),
+        ([0.0, 0.0], cdca::scene::Fix::X)
+    );
+    assert!(h.state().message().is_none(), "{:?}", h.state().message());
+    // the section keeps its open state from the removed support's
+    if h.query_all_by_label("fixes").count() == 0 {
+        h.get_by_label_contains("Point support 1:").click();
+        h.run();
+    }
+    for label in ["x", "y", "fixes"] {
+        assert!(h.query_all_by_label(label).count() > 0, "{label}");
+    }
 }

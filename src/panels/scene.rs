@@ -4,7 +4,8 @@
 use cdca::fracture::criterion::radius_and_strength;
 use cdca::scene::SceneFile;
 use cdca::scene::{
-    CriterionKind, Fix, GrowthControl, Material, Plane, Sampling, ShearStrength, SideBc,
+    CriterionKind, Fix, GrowthControl, Material, Plane, PointSupport, Sampling, ShearStrength,
+    SideBc,
 };
 use egui::{CollapsingHeader, Grid, Ui};
 
@@ -202,25 +203,48 @@ fn boundary_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
             side_ui(ui, t, "Bottom", &mut b.bottom);
             side_ui(ui, t, "Left", &mut b.left);
             let mut remove = None;
-            for (i, p) in b.points.iter().enumerate() {
-                // wrapped: the remove button stays on screen in a narrow panel
-                ui.horizontal_wrapped(|ui| {
-                    let fix = match p.fix {
-                        Fix::X => "x",
-                        Fix::Y => "y",
-                        Fix::Xy => "x and y",
-                    };
-                    ui.label(format!(
-                        "Point support at ({}, {}) fixes {fix}",
-                        units::mm(p.at[0]),
-                        units::mm(p.at[1])
-                    ));
-                    if ui
-                        .small_button(format!("Remove support {}", i + 1))
-                        .clicked()
-                    {
-                        remove = Some(i);
-                    }
+            for (i, p) in b.points.iter_mut().enumerate() {
+                let fix = match p.fix {
+                    Fix::X => "x",
+                    Fix::Y => "y",
+                    Fix::Xy => "x, y",
+                };
+                let title = format!(
+                    "Point support {}: ({}, {}) mm, fixes {fix}",
+                    i + 1,
+                    units::compact(p.at[0] * MM_PER_M),
+                    units::compact(p.at[1] * MM_PER_M)
+                );
+                CollapsingHeader::new(title)
+                    .id_salt(("point support", i))
+                    .show(ui, |ui| {
+                        Grid::new("point").num_columns(2).show(ui, |ui| {
+                            quantity_row(ui, t, "x", &mut p.at[0], MM, "mm", -1e5..=1e5);
+                            quantity_row(ui, t, "y", &mut p.at[1], MM, "mm", -1e5..=1e5);
+                        });
+                        choice(
+                            ui,
+                            "fixes",
+                            &mut p.fix,
+                            &[(Fix::X, "x"), (Fix::Y, "y"), (Fix::Xy, "x and y")],
+                        )
+                        .on_hover_text("The node nearest to the point is held in this direction");
+                        if ui
+                            .small_button(format!("Remove support {}", i + 1))
+                            .clicked()
+                        {
+                            remove = Some(i);
+                        }
+                    });
+            }
+            if ui
+                .small_button("Add point support")
+                .on_hover_text("A support at the bottom-left corner, fixing x; edit where and what")
+                .clicked()
+            {
+                b.points.push(PointSupport {
+                    at: [0.0, 0.0],
+                    fix: Fix::X,
                 });
             }
             if let Some(i) = remove {

@@ -296,58 +296,6 @@ fn panels_show_only_what_the_scene_can_use() {
     assert!(h.query_by_label("Shear toughness K_IIC").is_none());
 }
 
-/// Contact settings go once a solve shows every crack face open (the
-/// bundled centre crack under tension), and stay hidden while the next
-/// solve runs; the default scene's closed flaw keeps them. A point
-/// support's remove button stays inside the panel.
-#[test]
-#[cfg_attr(
-    debug_assertions,
-    ignore = "the solver is slow without optimisation: run with --release"
-)]
-fn contact_settings_are_left_out_where_every_face_is_open() {
-    let mut h = harness(Options::default());
-    h.run_steps(20);
-    assert!(h.state().is_solved());
-    for label in [
-        "Contact tolerance",
-        "Max contact iterations",
-        "Traction arrows",
-    ] {
-        assert!(h.query_by_label(label).is_some(), "{label}: a closed flaw");
-    }
-    h.state_mut().push(Command::OpenSceneText {
-        source: "centre_crack_tension.json".to_owned(),
-        text: include_str!("../assets/scenes/centre_crack_tension.json").to_owned(),
-    });
-    h.run_steps(20);
-    assert!(h.state().is_solved() && h.state().message().is_none());
-    for label in [
-        "Contact tolerance",
-        "Max contact iterations",
-        "Traction arrows",
-    ] {
-        assert!(
-            h.query_by_label(label).is_none(),
-            "{label}: every face open"
-        );
-    }
-    h.get_by_label_contains("Every crack face was open at the last solve");
-    h.get_by_label_contains("friction and cohesion have no effect");
-    h.get_by_label_contains("Point support 2:").click();
-    h.run();
-    let remove = h.get_by_label("Remove support 2").rect();
-    let canvas = h.get_by_label(cdca_workbench::app::CANVAS_LABEL).rect();
-    assert!(
-        remove.right() <= canvas.left(),
-        "the button lies in the scene panel: {remove:?}, canvas {canvas:?}"
-    );
-    // an edit starts a new solve: the verdict of the last one holds
-    edit_scene(&mut h, |s| s.solver.contact_tolerance = 1e-9);
-    h.run_steps(1);
-    assert!(h.query_by_label("Contact tolerance").is_none());
-}
-
 /// The paper's in-sweep contact is offered with the automaton on a scene
 /// with cracks only; chosen, growth keeps the automaton (the multigrid
 /// swap cannot run it) and the acceleration option is hidden; with another
@@ -433,7 +381,238 @@ fn growth_settings_follow_the_control() {
     assert!(h.query_by_label("Max load factor λ").is_none());
 }
 
+/// Side-panel widgets (label or text, and rect) that reach under the
+/// canvas or, in the right panel, under its scroll bar at the window's edge
+/// (the last 10 px of the [`SIZE`] wide window): a control drawn there
+/// cannot be used, nor a text read, without scrolling sideways.
+fn widgets_under_the_canvas(h: &Harness<'_, WorkbenchApp>) -> Vec<String> {
+    let canvas = h.get_by_label(cdca_workbench::app::CANVAS_LABEL).rect();
+    let edge = SIZE[0] - 10.0;
+    let mut out = Vec::new();
+    for n in h.query_all_by(|n| n.bounding_box().is_some()) {
+        let r = n.rect();
+        let node = n.accesskit_node();
+        let label = node.label().or_else(|| node.value()).unwrap_or_default();
+        let left = r.left() < canvas.left() - 0.5 && r.right() > canvas.left() + 0.5;
+        let right = r.left() < canvas.right() - 0.5 && r.right() > canvas.right() + 0.5
+            || r.left() > canvas.right() && r.right() > edge;
+        // below the toolbar; the plots' resize handle spans the canvas, and
+        // a long name scrolls inside its text field
+        let panel = r.top() >= canvas.top()
+            && label != "Resize panel"
+            && node.role() != egui::accesskit::Role::TextRun;
+        if (left || right) && panel && !label.is_empty() {
+            out.push(format!("{label:?} {r:?}"));
+        }
+    }
+    out
+}
+
+/// Every bundled scene, all its sections open: no widget of the side
+/// panels reaches under the canvas (a control drawn there cannot be used;
+/// the point supports' remove buttons were, on the default scene too).
+#[test]
+fn side_panels_fit_beside_the_canvas_on_every_bundled_scene() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
+    let mut names: Vec<_> = std::fs::read_dir(&dir)
+        .expect("scenes")
+        .map(|e| e.expect("entry").path())
+        .collect();
+    names.sort();
+    let mut overflow = Vec::new();
+    for path in names {
+        // tall enough that every section is on screen: widths are checked
+        let mut h = Harness::builder()
+            .with_size([SIZE[0], 2400.0])
+            .with_max_steps(400)
+            .build_ui_state(
+                |ui, app: &mut WorkbenchApp| {
+                    app.logic(ui.ctx());
+                    app.ui(ui);
+                },
+                WorkbenchApp::new(no_solver()),
+            );
+        h.run();
+        h.state_mut().push(Command::OpenSceneText {
+            source: path.display().to_string(),
+            text: std::fs::read_to_string(&path).expect("scene"),
+        });
+        h.run();
+        for header in ["Fracture criterion", "Growth"] {
+            h.get_by_label(header).click();
+            h.run();
+        }
+        let cracks: Vec<String> = h
+            .query_all_by_label_contains("points, ")
+            .filter_map(|n| n.accesskit_node().label())
+            .collect();
+        let supports: Vec<String> = h
+            .query_all_by_label_contains("Point support ")
+            .filter_map(|n| n.accesskit_node().label())
+            .collect();
+        for c in cracks.into_iter().chain(supports) {
+            h.get_by_label(&c).click();
+            h.run();
+        }
+        // the sections are open
+        for label in ["Radius r0", "Control"] {
+            let shown = |n: &egui_kittest::kittest::AccessKitNode<'_>| {
+                n.label()
+                    .or_else(|| n.value())
+                    .is_some_and(|l| l.contains(label))
+            };
+            let found = h.query_all_by(shown).count();
+            assert!(found > 0, "{label} in {}", path.display());
+        }
+        for w in widgets_under_the_canvas(&h) {
+            overflow.push(format!("{}: {w}", path.display()));
+        }
+    }
+    assert!(overflow.is_empty(), "{}", overflow.join("\n"));
+}
+
+/// Joint stiffness reads in GPa/m, the unit of the paper's joint
+/// (200 / 20 GPa/m): the default penalty 100 E/h of the default scene
+/// (E = 4.78 GPa, h = 0.5 mm) is 9.56e5 GPa/m, and a scene with the paper's
+/// joint shows 200 and 20. (The panel showed Pa/m ÷ 1e6 labelled GPa/mm.)
+#[test]
+fn joint_stiffness_is_shown_in_gpa_per_metre() {
+    let mut h = harness(no_solver());
+    h.run();
+    h.get_by_label_contains("Crack 1: 2 points").click();
+    h.run();
+    let text = |h: &Harness<'_, WorkbenchApp>, t: &str| {
+        h.query_all_by(|n| n.value().as_deref() == Some(t)).count()
+    };
+    assert!(text(&h, "9.560e5 GPa/m") > 0, "the auto k_N");
+    assert!(text(&h, "95600 GPa/m") > 0, "the auto k_T = k_N/10");
+    edit_scene(&mut h, |s| {
+        s.cracks[0].normal_stiffness = Some(200e9);
+        s.cracks[0].shear_stiffness = Some(20e9);
+    });
+    h.run();
+    assert!(text(&h, "200 GPa/m") > 0, "k_N typed");
+    assert!(text(&h, "20.0 GPa/m") > 0, "k_T typed");
+}
+
+/// A scene whose values lie outside the panels' ranges (face friction 10,
+/// a 500 × 500 mesh for multigrid-CG) opens as it is: the panels show the
+/// values without clamping them, and opening it is the only undo step.
+/// (The panels used to write friction 5 and a 400 × 400 mesh back at the
+/// first frame.)
+#[test]
+fn opening_a_scene_never_changes_it() {
+    let mut h = harness(no_solver());
+    h.run();
+    let mut scene = h.state().scene().clone();
+    scene.cracks[0].friction = 10.0;
+    (scene.mesh.nx, scene.mesh.ny) = (500, 500);
+    scene.solver.kind = cdca::scene::SolverKind::Multigrid;
+    h.state_mut().push(Command::OpenSceneText {
+        source: "wide.json".to_owned(),
+        text: serde_json::to_string(&scene).expect("json"),
+    });
+    h.run_steps(5);
+    h.get_by_label_contains("Crack 1: 2 points").click();
+    h.run_steps(5);
+    assert!(h.state().message().is_none(), "{:?}", h.state().message());
+    assert_eq!(*h.state().scene(), scene);
+    h.get_by_label("Undo").click();
+    h.run();
+    assert_ne!(*h.state().scene(), scene, "one undo step: the opening");
+}
+
+/// Point supports can be added and edited, not only removed: without its
+/// point support the default specimen is refused (nothing holds it in x),
+/// "Add point support" puts one at the bottom-left corner fixing x, which
+/// makes it valid again, and its position and fixed direction are fields.
+#[test]
+fn a_point_support_can_be_added_back_and_edited() {
+    let mut h = harness(no_solver());
+    h.run();
+    h.get_by_label("Point support 1: (0, 0) mm, fixes x")
+        .click();
+    h.run();
+    h.get_by_label("Remove support 1").click();
+    h.run();
+    assert!(h.state().scene().boundary.points.is_empty());
+    assert!(
+        matches!(h.state().message(), Some(Message::Error(e)) if e.contains("boundary")),
+        "{:?}",
+        h.state().message()
+    );
+    h.get_by_label("Add point support").click();
+    h.run();
+    let points = &h.state().scene().boundary.points;
+    assert_eq!(points.len(), 1);
+    assert_eq!(
+        (points[0].at, points[0].fix),
+        ([0.0, 0.0], cdca::scene::Fix::X)
+    );
+    assert!(h.state().message().is_none(), "{:?}", h.state().message());
+    // the section keeps its open state from the removed support's
+    if h.query_all_by_label("fixes").count() == 0 {
+        h.get_by_label_contains("Point support 1:").click();
+        h.run();
+    }
+    for label in ["x", "y", "fixes"] {
+        assert!(h.query_all_by_label(label).count() > 0, "{label}");
+    }
+}
+
 // --- with the solver -------------------------------------------------------
+
+/// Contact settings go once a solve shows every crack face open (the
+/// bundled centre crack under tension), and stay hidden while the next
+/// solve runs; the default scene's closed flaw keeps them. A point
+/// support's remove button stays inside the panel.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn contact_settings_are_left_out_where_every_face_is_open() {
+    let mut h = harness(Options::default());
+    h.run_steps(20);
+    assert!(h.state().is_solved());
+    for label in [
+        "Contact tolerance",
+        "Max contact iterations",
+        "Traction arrows",
+    ] {
+        assert!(h.query_by_label(label).is_some(), "{label}: a closed flaw");
+    }
+    h.state_mut().push(Command::OpenSceneText {
+        source: "centre_crack_tension.json".to_owned(),
+        text: include_str!("../assets/scenes/centre_crack_tension.json").to_owned(),
+    });
+    h.run_steps(20);
+    assert!(h.state().is_solved() && h.state().message().is_none());
+    for label in [
+        "Contact tolerance",
+        "Max contact iterations",
+        "Traction arrows",
+    ] {
+        assert!(
+            h.query_by_label(label).is_none(),
+            "{label}: every face open"
+        );
+    }
+    h.get_by_label_contains("Every crack face was open at the last solve");
+    h.get_by_label_contains("friction and cohesion have no effect");
+    h.get_by_label_contains("Point support 2:").click();
+    h.run();
+    let remove = h.get_by_label("Remove support 2").rect();
+    let canvas = h.get_by_label(cdca_workbench::app::CANVAS_LABEL).rect();
+    assert!(
+        remove.right() <= canvas.left(),
+        "the button lies in the scene panel: {remove:?}, canvas {canvas:?}"
+    );
+    // an edit starts a new solve: the verdict of the last one holds
+    edit_scene(&mut h, |s| s.solver.contact_tolerance = 1e-9);
+    h.run_steps(1);
+    assert!(h.query_by_label("Contact tolerance").is_none());
+}
 
 #[test]
 #[cfg_attr(
@@ -1267,120 +1446,6 @@ fn a_shared_link_opens_its_scene_and_a_bad_one_falls_back_with_a_message() {
     );
 }
 
-/// Side-panel widgets (label or text, and rect) that reach under the
-/// canvas or, in the right panel, under its scroll bar at the window's edge
-/// (the last 10 px of the [`SIZE`] wide window): a control drawn there
-/// cannot be used, nor a text read, without scrolling sideways.
-fn widgets_under_the_canvas(h: &Harness<'_, WorkbenchApp>) -> Vec<String> {
-    let canvas = h.get_by_label(cdca_workbench::app::CANVAS_LABEL).rect();
-    let edge = SIZE[0] - 10.0;
-    let mut out = Vec::new();
-    for n in h.query_all_by(|n| n.bounding_box().is_some()) {
-        let r = n.rect();
-        let node = n.accesskit_node();
-        let label = node.label().or_else(|| node.value()).unwrap_or_default();
-        let left = r.left() < canvas.left() - 0.5 && r.right() > canvas.left() + 0.5;
-        let right = r.left() < canvas.right() - 0.5 && r.right() > canvas.right() + 0.5
-            || r.left() > canvas.right() && r.right() > edge;
-        // below the toolbar; the plots' resize handle spans the canvas, and
-        // a long name scrolls inside its text field
-        let panel = r.top() >= canvas.top()
-            && label != "Resize panel"
-            && node.role() != egui::accesskit::Role::TextRun;
-        if (left || right) && panel && !label.is_empty() {
-            out.push(format!("{label:?} {r:?}"));
-        }
-    }
-    out
-}
-
-/// Every bundled scene, all its sections open: no widget of the side
-/// panels reaches under the canvas (a control drawn there cannot be used;
-/// the point supports' remove buttons were, on the default scene too).
-#[test]
-fn side_panels_fit_beside_the_canvas_on_every_bundled_scene() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
-    let mut names: Vec<_> = std::fs::read_dir(&dir)
-        .expect("scenes")
-        .map(|e| e.expect("entry").path())
-        .collect();
-    names.sort();
-    let mut overflow = Vec::new();
-    for path in names {
-        // tall enough that every section is on screen: widths are checked
-        let mut h = Harness::builder()
-            .with_size([SIZE[0], 2400.0])
-            .with_max_steps(400)
-            .build_ui_state(
-                |ui, app: &mut WorkbenchApp| {
-                    app.logic(ui.ctx());
-                    app.ui(ui);
-                },
-                WorkbenchApp::new(no_solver()),
-            );
-        h.run();
-        h.state_mut().push(Command::OpenSceneText {
-            source: path.display().to_string(),
-            text: std::fs::read_to_string(&path).expect("scene"),
-        });
-        h.run();
-        for header in ["Fracture criterion", "Growth"] {
-            h.get_by_label(header).click();
-            h.run();
-        }
-        let cracks: Vec<String> = h
-            .query_all_by_label_contains("points, ")
-            .filter_map(|n| n.accesskit_node().label())
-            .collect();
-        let supports: Vec<String> = h
-            .query_all_by_label_contains("Point support ")
-            .filter_map(|n| n.accesskit_node().label())
-            .collect();
-        for c in cracks.into_iter().chain(supports) {
-            h.get_by_label(&c).click();
-            h.run();
-        }
-        // the sections are open
-        for label in ["Radius r0", "Control"] {
-            let shown = |n: &egui_kittest::kittest::AccessKitNode<'_>| {
-                n.label()
-                    .or_else(|| n.value())
-                    .is_some_and(|l| l.contains(label))
-            };
-            let found = h.query_all_by(shown).count();
-            assert!(found > 0, "{label} in {}", path.display());
-        }
-        for w in widgets_under_the_canvas(&h) {
-            overflow.push(format!("{}: {w}", path.display()));
-        }
-    }
-    assert!(overflow.is_empty(), "{}", overflow.join("\n"));
-}
-
-/// Joint stiffness reads in GPa/m, the unit of the paper's joint
-/// (200 / 20 GPa/m): the default penalty 100 E/h of the default scene
-/// (E = 4.78 GPa, h = 0.5 mm) is 9.56e5 GPa/m, and a scene with the paper's
-/// joint shows 200 and 20. (The panel showed Pa/m ÷ 1e6 labelled GPa/mm.)
-#[test]
-fn joint_stiffness_is_shown_in_gpa_per_metre() {
-    let mut h = harness(no_solver());
-    h.run();
-    h.get_by_label_contains("Crack 1: 2 points").click();
-    h.run();
-    let text = |h: &Harness<'_, WorkbenchApp>, t: &str| {
-        h.query_all_by(|n| n.value().as_deref() == Some(t)).count()
-    };
-    assert!(text(&h, "9.560e5 GPa/m") > 0, "the auto k_N");
-    assert!(text(&h, "95600 GPa/m") > 0, "the auto k_T = k_N/10");
-    edit_scene(&mut h, |s| {
-        s.cracks[0].normal_stiffness = Some(200e9);
-        s.cracks[0].shear_stiffness = Some(20e9);
-    });
-    h.run();
-    assert!(text(&h, "200 GPa/m") > 0, "k_N typed");
-    assert!(text(&h, "20.0 GPa/m") > 0, "k_T typed");
-}
-
 /// A mesh refined in the panel does not start a solve that holds the
 /// window still or exhausts a browser tab's memory: over 800 × 800 any
 /// solver, and over 400 × 400 the direct solver (one factorisation in one
@@ -1433,33 +1498,6 @@ fn a_mesh_too_fine_to_solve_at_once_is_refused_or_waits_for_solve() {
     h.get_by_label("Scene changed — press Solve.");
 }
 
-/// A scene whose values lie outside the panels' ranges (face friction 10,
-/// a 500 × 500 mesh for multigrid-CG) opens as it is: the panels show the
-/// values without clamping them, and opening it is the only undo step.
-/// (The panels used to write friction 5 and a 400 × 400 mesh back at the
-/// first frame.)
-#[test]
-fn opening_a_scene_never_changes_it() {
-    let mut h = harness(no_solver());
-    h.run();
-    let mut scene = h.state().scene().clone();
-    scene.cracks[0].friction = 10.0;
-    (scene.mesh.nx, scene.mesh.ny) = (500, 500);
-    scene.solver.kind = cdca::scene::SolverKind::Multigrid;
-    h.state_mut().push(Command::OpenSceneText {
-        source: "wide.json".to_owned(),
-        text: serde_json::to_string(&scene).expect("json"),
-    });
-    h.run_steps(5);
-    h.get_by_label_contains("Crack 1: 2 points").click();
-    h.run_steps(5);
-    assert!(h.state().message().is_none(), "{:?}", h.state().message());
-    assert_eq!(*h.state().scene(), scene);
-    h.get_by_label("Undo").click();
-    h.run();
-    assert_ne!(*h.state().scene(), scene, "one undo step: the opening");
-}
-
 /// A run whose λ_cr search steps around a trial that did not converge
 /// (held-out random layout 0 of the second seed, see the solver test
 /// `a_trial_that_does_not_converge_is_stepped_around`) ends `through` with
@@ -1505,42 +1543,4 @@ fn a_step_that_stepped_around_an_unsolved_trial_says_so() {
     // the status of a finished run fits its panel
     let overflow = widgets_under_the_canvas(&h);
     assert!(overflow.is_empty(), "{}", overflow.join("\n"));
-}
-
-/// Point supports can be added and edited, not only removed: without its
-/// point support the default specimen is refused (nothing holds it in x),
-/// "Add point support" puts one at the bottom-left corner fixing x, which
-/// makes it valid again, and its position and fixed direction are fields.
-#[test]
-fn a_point_support_can_be_added_back_and_edited() {
-    let mut h = harness(no_solver());
-    h.run();
-    h.get_by_label("Point support 1: (0, 0) mm, fixes x")
-        .click();
-    h.run();
-    h.get_by_label("Remove support 1").click();
-    h.run();
-    assert!(h.state().scene().boundary.points.is_empty());
-    assert!(
-        matches!(h.state().message(), Some(Message::Error(e)) if e.contains("boundary")),
-        "{:?}",
-        h.state().message()
-    );
-    h.get_by_label("Add point support").click();
-    h.run();
-    let points = &h.state().scene().boundary.points;
-    assert_eq!(points.len(), 1);
-    assert_eq!(
-        (points[0].at, points[0].fix),
-        ([0.0, 0.0], cdca::scene::Fix::X)
-    );
-    assert!(h.state().message().is_none(), "{:?}", h.state().message());
-    // the section keeps its open state from the removed support's
-    if h.query_all_by_label("fixes").count() == 0 {
-        h.get_by_label_contains("Point support 1:").click();
-        h.run();
-    }
-    for label in ["x", "y", "fixes"] {
-        assert!(h.query_all_by_label(label).count() > 0, "{label}");
-    }
 }

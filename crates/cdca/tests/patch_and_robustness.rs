@@ -321,3 +321,43 @@ fn a_closed_flaw_through_nodes_keeps_its_sifs() {
         assert!(k1.abs() < 0.05 * k2.abs(), "d = {d}: K_I {k1}");
     }
 }
+
+/// The default scene's closed sliding flaw (5.7 mm at 45°, μ = 0.5, the
+/// penalty contact, 60 × 60) shifted over a 5 × 5 grid of offsets inside an
+/// element, so that its tips sit anywhere in their elements. A closed crack
+/// has K_I = 0; the spurious K_I stays below 10% of |K_II| (measured at
+/// most 6.4%) and K_II within 4% of the median over the 50 tips (measured
+/// 2.8%). This is the size of the remaining position dependence of the
+/// near-tip contact (the short face piece next to a tip carries up to 30%
+/// more than σ_n): the README's *Closed cracks at any tip position*.
+#[test]
+fn a_closed_flaw_anywhere_in_its_elements_keeps_its_sifs() {
+    let h = 0.0005;
+    let mut k = Vec::new();
+    for i in 0..5 {
+        for j in 0..5 {
+            let (dx, dy) = (0.1 + 0.2 * f64::from(i), 0.1 + 0.2 * f64::from(j));
+            let mut s = bundled("specimen_single_flaw");
+            s.cracks[0].points = Some(vec![
+                [0.013 + dx * h, 0.013 + dy * h],
+                [0.017 + dx * h, 0.017 + dy * h],
+            ]);
+            let mut sim = cdca::Simulation::new(valid(s)).expect("valid");
+            let r = sim.solve().expect("solve");
+            assert!(r.converged());
+            k.extend(r.tips.iter().map(|t| (t.k1, t.k2)));
+        }
+    }
+    let mut k2: Vec<f64> = k.iter().map(|p| p.1).collect();
+    k2.sort_by(f64::total_cmp);
+    let median = k2[k2.len() / 2];
+    let worst_k1 = k.iter().map(|p| (p.0 / p.1).abs()).fold(0.0, f64::max);
+    let worst_k2 = k.iter().map(|p| rel(p.1, median)).fold(0.0, f64::max);
+    println!(
+        "{} tips: max |K_I/K_II| {worst_k1:.4}, K_II median {:.4} MPa√m, max deviation {worst_k2:.4}",
+        k.len(),
+        median / 1e6
+    );
+    assert!(worst_k1 < 0.10, "{worst_k1}");
+    assert!(worst_k2 < 0.04, "{worst_k2}");
+}

@@ -187,10 +187,10 @@ pub struct GrowthStepReport {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub intact_rock: Option<IntactRockReport>,
     /// Load factors of this step's λ_cr trials whose solve did not
-    /// converge (at most three; left out when none). The search moved away
-    /// from them, so `load_factor` is the lowest root among the converged
-    /// trials, and one between an unsolved trial and the bracket may have
-    /// been passed over.
+    /// converge (left out when none): up to three the search moved away
+    /// from, so that `load_factor` is the lowest root among the converged
+    /// trials (one between an unsolved trial and the bracket may have been
+    /// passed over); on an unconverged step, also the trial that ended it.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub unsolved_trials: Vec<f64>,
 }

@@ -167,9 +167,7 @@ impl Search {
         let next = next.clamp(self.lo.0 + 0.25 * w, hi.0 - 0.25 * w);
         Next::Trial(next)
     }
-}
 
-impl Search {
     /// A trial at `lambda` whose solve did not converge: it says nothing
     /// about `U`, so the bracket stays as it is and the next trial moves
     /// away from it, to the middle between it and the bracket's upper end

@@ -231,6 +231,7 @@ impl WorkbenchApp {
         self.canvas.fit_requested = true;
         self.editor = crate::edit::Editor::default();
         self.message = None;
+        self.runner.forget_contact();
         self.scene_changed(false);
     }
 

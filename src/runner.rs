@@ -254,6 +254,12 @@ impl Runner {
         self.checked.as_ref().map_err(Clone::clone)
     }
 
+    /// Another scene is opened: the last solve's contact verdict (see
+    /// [`SolutionView::all_faces_open`]) no longer applies.
+    pub fn forget_contact(&mut self) {
+        self.view.forget_contact();
+    }
+
     /// Builds a simulation of `scene` (checked; nothing solved yet).
     pub fn rebuild(&mut self, scene: &SceneFile) -> Result<(), String> {
         self.invalidate(scene)?;

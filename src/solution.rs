@@ -130,13 +130,20 @@ impl SolutionView {
         self.solved || self.live
     }
 
-    /// Forgets everything (a new scene), keeping the version counter rising.
+    /// Forgets the solution (the scene changed), keeping the version counter
+    /// rising and the last solve's contact verdict until the next solve.
     pub fn clear(&mut self) {
         let version = self.version + 1;
         *self = Self {
             version,
+            closed_at_last_solve: self.closed_at_last_solve,
             ..Self::default()
         };
+    }
+
+    /// Forgets the last solve's contact verdict too (another scene).
+    pub fn forget_contact(&mut self) {
+        self.closed_at_last_solve = None;
     }
 }
 

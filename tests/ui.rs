@@ -608,10 +608,24 @@ fn contact_settings_are_left_out_where_every_face_is_open() {
         remove.right() <= canvas.left(),
         "the button lies in the scene panel: {remove:?}, canvas {canvas:?}"
     );
-    // an edit starts a new solve: the verdict of the last one holds
-    edit_scene(&mut h, |s| s.solver.contact_tolerance = 1e-9);
-    h.run_steps(1);
+    // while an edit is under way (a drag: no solve yet) the verdict of the
+    // last solve holds
+    let mut dragged = h.state().scene().clone();
+    dragged.cracks[0].points = Some(vec![[0.4, 1.5], [0.61, 1.51]]);
+    h.state_mut().push(Command::SetScene {
+        scene: Box::new(dragged),
+        ongoing: true,
+    });
+    h.run();
+    assert!(!h.state().is_solved(), "no solve during a drag");
     assert!(h.query_by_label("Contact tolerance").is_none());
+    // another scene: the verdict goes with the old one
+    h.state_mut().push(Command::OpenSceneText {
+        source: "default.json".to_owned(),
+        text: include_str!("../assets/scenes/specimen_single_flaw.json").to_owned(),
+    });
+    h.run_steps(20);
+    assert!(h.query_by_label("Contact tolerance").is_some());
 }
 
 #[test]

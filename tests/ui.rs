@@ -63,6 +63,23 @@ fn edit_scene(h: &mut Harness<'_, WorkbenchApp>, edit: impl FnOnce(&mut cdca::sc
     });
 }
 
+/// The workbench on its default scene, solved (release builds: the solver
+/// runs in the first frames).
+fn solved_default() -> Harness<'static, WorkbenchApp> {
+    let mut h = harness(Options::default());
+    h.run_steps(20);
+    assert!(h.state().is_solved());
+    h
+}
+
+/// The error the workbench shows; panics naming what it shows instead.
+fn error_message(h: &Harness<'_, WorkbenchApp>) -> String {
+    match h.state().message() {
+        Some(Message::Error(e)) => e.clone(),
+        m => panic!("an error expected, got {m:?}"),
+    }
+}
+
 fn click_at(h: &mut Harness<'_, WorkbenchApp>, pos: Pos2) {
     h.event(Event::PointerMoved(pos));
     for pressed in [true, false] {
@@ -218,9 +235,7 @@ fn a_bad_scene_file_shows_an_error_and_keeps_the_scene() {
     ignore = "the solver is slow without optimisation: run with --release"
 )]
 fn a_crack_drawn_across_the_specimen_is_refused_with_a_reason() {
-    let mut h = harness(Options::default());
-    h.run_steps(20);
-    assert!(h.state().is_solved());
+    let mut h = solved_default();
     edit_scene(&mut h, |s| {
         let mut across = s.cracks[0].clone();
         across.points = Some(vec![[0.0, 0.012], [0.03, 0.018]]);
@@ -572,9 +587,7 @@ fn a_point_support_can_be_added_back_and_edited() {
     ignore = "the solver is slow without optimisation: run with --release"
 )]
 fn contact_settings_are_left_out_where_every_face_is_open() {
-    let mut h = harness(Options::default());
-    h.run_steps(20);
-    assert!(h.state().is_solved());
+    let mut h = solved_default();
     for label in [
         "Contact tolerance",
         "Max contact iterations",
@@ -1450,9 +1463,7 @@ fn a_shared_link_opens_its_scene_and_a_bad_one_falls_back_with_a_message() {
         .push(Command::OpenLink(format!("#{truncated}")));
     h.run_steps(3);
     assert_eq!(h.state().scene(), &cdca_workbench::scenes::default_scene());
-    let Some(Message::Error(e)) = h.state().message() else {
-        panic!("no message: {:?}", h.state().message());
-    };
+    let e = error_message(&h);
     assert!(
         e.starts_with("The shared link could not be opened: the link is truncated or damaged")
             && e.ends_with("Showing the default scene."),
@@ -1473,16 +1484,10 @@ fn a_shared_link_opens_its_scene_and_a_bad_one_falls_back_with_a_message() {
 )]
 fn a_mesh_too_fine_to_solve_at_once_is_refused_or_waits_for_solve() {
     use cdca::scene::SolverKind;
-    let mut h = harness(Options::default());
-    h.run_steps(20);
-    assert!(h.state().is_solved());
-    let error = |h: &Harness<'_, WorkbenchApp>| match h.state().message() {
-        Some(Message::Error(e)) => e.clone(),
-        m => panic!("an error expected, got {m:?}"),
-    };
+    let mut h = solved_default();
     edit_scene(&mut h, |s| (s.mesh.nx, s.mesh.ny) = (1000, 1000));
     h.run();
-    let e = error(&h);
+    let e = error_message(&h);
     assert!(
         e.contains("`mesh` = 1000 × 1000") && e.contains("up to 640000 elements"),
         "{e}"
@@ -1490,7 +1495,7 @@ fn a_mesh_too_fine_to_solve_at_once_is_refused_or_waits_for_solve() {
     assert!(!h.state().is_solved());
     edit_scene(&mut h, |s| (s.mesh.nx, s.mesh.ny) = (500, 500));
     h.run();
-    let e = error(&h);
+    let e = error_message(&h);
     assert!(
         e.contains("direct solver") && e.contains("multigrid-CG"),
         "{e}"
@@ -1501,7 +1506,7 @@ fn a_mesh_too_fine_to_solve_at_once_is_refused_or_waits_for_solve() {
     assert!(h.state().message().is_none(), "{:?}", h.state().message());
     h.get_by_label("Compare solvers").click();
     h.run();
-    assert!(error(&h).starts_with("The race cannot run"));
+    assert!(error_message(&h).starts_with("The race cannot run"));
     edit_scene(&mut h, |s| {
         s.solver.kind = SolverKind::Direct;
         (s.mesh.nx, s.mesh.ny) = (200, 200);

@@ -193,6 +193,14 @@ pub struct GrowthStepReport {
     /// passed over); on an unconverged step, also the trial that ended it.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub unsolved_trials: Vec<f64>,
+    /// Load factors of this step's λ_cr trials whose contact iteration did
+    /// not settle from its warm start (the last trial's states and
+    /// displacement) and that were solved once more from a cold start, as
+    /// a fresh solve of the scene would be (left out when none). A trial
+    /// that converged so is an ordinary trial; one that did not is also in
+    /// `unsolved_trials`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub cold_trials: Vec<f64>,
 }
 
 /// A tip that grew in a step: its new position and how it grew.

@@ -40,6 +40,8 @@ impl Simulation {
             base_faces: vec![FaceState::default(); self.state.faces.len()],
             best: None,
             unsolved: Vec::new(),
+            cold_trials: Vec::new(),
+            cold: false,
             start: Instant::now(),
             ended: None,
         });
@@ -85,14 +87,23 @@ impl Simulation {
         let seconds = run.start.elapsed().as_secs_f64();
         let report = self.report(seconds);
         if let Some(next) = run.ended {
-            return Some(self.finish_growth_step(
-                &report,
-                run.start,
-                next != Next::Failed,
-                &run.unsolved,
-            ));
+            return Some(self.finish_growth_step(&report, &run.trials(), next != Next::Failed));
         }
         let (lambda, u) = (self.state.lambda, self.utilisation());
+        if !report.converged() && !run.cold {
+            // the warm start (the last trial's contact states and
+            // displacement) only speeds the contact iteration up; a trial
+            // that does not settle from it is solved once more from none,
+            // as a fresh solve of the scene at that load would be
+            run.cold = true;
+            run.cold_trials.push(lambda);
+            self.scratch.critical = Some(run);
+            self.start_trial(lambda);
+            self.scratch.contact_guess = None;
+            self.state.u.fill(0.0);
+            return None;
+        }
+        run.cold = false;
         if !report.converged() {
             // a solve that does not converge says nothing about U(λ): move
             // away from it (near a split the contact iteration can cycle at
@@ -102,7 +113,7 @@ impl Simulation {
                 .flatten();
             run.unsolved.push(lambda);
             let Some(next) = next else {
-                return Some(self.finish_growth_step(&report, run.start, true, &run.unsolved));
+                return Some(self.finish_growth_step(&report, &run.trials(), true));
             };
             // the next trial starts from the lowest converged one above
             let guess = run.best.as_ref().map(|b| b.faces.clone());
@@ -122,9 +133,7 @@ impl Simulation {
                 self.start_trial(next);
                 None
             }
-            Next::Exceeded => {
-                Some(self.finish_growth_step(&report, run.start, true, &run.unsolved))
-            }
+            Next::Exceeded => Some(self.finish_growth_step(&report, &run.trials(), true)),
             next => {
                 if let Some(best) = run.best.take() {
                     self.restore(best);

@@ -4,7 +4,7 @@
 
 use web_time::Instant;
 
-use super::search::MAX_TRIALS;
+use super::search::{MAX_TRIALS, Trials};
 use super::state::Simulation;
 use crate::contact::law::{FaceState, carry_over, counts};
 use crate::discretisation::xfem::Reuse;
@@ -115,7 +115,12 @@ impl Simulation {
         }
         self.scratch.growth_start = None;
         let report = self.report(start.elapsed().as_secs_f64());
-        Ok(Some(self.finish_growth_step(&report, start, true, &[])))
+        let trials = Trials {
+            start,
+            unsolved: &[],
+            cold: &[],
+        };
+        Ok(Some(self.finish_growth_step(&report, &trials, true)))
     }
 
     /// One chunk of what a rebuild after growth left to do (see
@@ -151,9 +156,8 @@ impl Simulation {
     pub(super) fn finish_growth_step(
         &mut self,
         report: &SolveReport,
-        start: Instant,
+        trials: &Trials,
         search_closed: bool,
-        unsolved: &[f64],
     ) -> GrowthStepReport {
         let critical = self.critical_control();
         let g = &self.model.scene.growth;
@@ -198,7 +202,8 @@ impl Simulation {
             crack_length: 0.0,
             tips: report.tips.clone(),
             intact_rock: self.intact_rock(),
-            unsolved_trials: unsolved.to_vec(),
+            unsolved_trials: trials.unsolved.to_vec(),
+            cold_trials: trials.cold.to_vec(),
         };
         if !step.converged {
             self.state.outcome = Some(Outcome::NotConverged);
@@ -242,7 +247,7 @@ impl Simulation {
             self.state.outcome = Some(Outcome::MaxSteps);
         }
         step.crack_length = self.state.cracks.iter().map(Crack::length).sum();
-        step.seconds = start.elapsed().as_secs_f64();
+        step.seconds = trials.start.elapsed().as_secs_f64();
         self.state.history.push(step.clone());
         self.state.scene.set_resume(self.resume(step.step));
         step

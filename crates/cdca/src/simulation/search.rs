@@ -14,9 +14,12 @@
 //! ratio) for the iterative solvers, and the contact states (open, stick or
 //! slip) the contact iteration starts from.
 //!
-//! A trial whose solve does not converge is not a point of `U(λ)`: the
-//! search moves away from it ([`Search::unsolved`]) a few times per step
-//! before it records the step unconverged.
+//! Those guesses only speed the contact iteration up: a trial that does
+//! not settle from them is solved once more from a cold start (no
+//! displacement, no guessed states), as a fresh solve of the scene would
+//! be (`cold_trials`). A trial that does not converge either way is not a
+//! point of `U(λ)`: the search moves away from it ([`Search::unsolved`]) a
+//! few times per step before it records the step unconverged.
 
 use web_time::Instant;
 
@@ -210,10 +213,33 @@ pub(super) struct CriticalRun {
     /// Load factors of the trials whose solve did not converge (the search
     /// moved away from them).
     pub(super) unsolved: Vec<f64>,
+    /// Load factors of the trials solved again from a cold start after
+    /// their warm start did not converge; `cold` while such a retry is in
+    /// progress.
+    pub(super) cold_trials: Vec<f64>,
+    pub(super) cold: bool,
     pub(super) start: Instant,
     /// The search's verdict once it has ended (the state then holds the
     /// solve at λ_cr, shown before the tips are extended).
     pub(super) ended: Option<Next>,
+}
+
+/// What a growth step's report says of its λ_cr search: when it started,
+/// and the trials it stepped around or solved again from a cold start.
+pub(super) struct Trials<'a> {
+    pub(super) start: Instant,
+    pub(super) unsolved: &'a [f64],
+    pub(super) cold: &'a [f64],
+}
+
+impl CriticalRun {
+    pub(super) fn trials(&self) -> Trials<'_> {
+        Trials {
+            start: self.start,
+            unsolved: &self.unsolved,
+            cold: &self.cold_trials,
+        }
+    }
 }
 
 #[cfg(test)]

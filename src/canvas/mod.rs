@@ -309,7 +309,12 @@ impl Canvas {
             symbols::paint_mesh_lines(painter, &view, scene);
         }
         if s.show_loads {
-            symbols::paint_boundary(painter, &view, scene);
+            // the field shown is at λ times the scene's tractions
+            let sol = input.solution;
+            let load_factor = (sol.solved || sol.live)
+                .then_some(sol.load_factor)
+                .filter(|l| (l - 1.0).abs() > 1e-9);
+            symbols::paint_boundary(painter, &view, scene, load_factor);
         }
         let scene_cracks: Vec<Vec<[f64; 2]>>;
         let cracks = if input.solution.cracks.is_empty() {

@@ -116,8 +116,15 @@ fn sides(scene: &SceneFile) -> [Side; 4] {
 }
 
 /// Traction arrows (compression points into the specimen), roller and
-/// fixed symbols, point supports.
-pub fn paint_boundary(painter: &Painter, view: &ViewTransform, scene: &SceneFile) {
+/// fixed symbols, point supports. `load_factor`: the factor λ on the
+/// scene's tractions of the field shown, when it is not 1 (growth under
+/// critical or load control); the labels then read "λ 1.706 × σ_n …".
+pub fn paint_boundary(
+    painter: &Painter,
+    view: &ViewTransform,
+    scene: &SceneFile,
+    load_factor: Option<f64>,
+) {
     let font = FontId::proportional(12.0);
     for side in sides(scene) {
         let out = view.screen_vec(side.outward).normalized();
@@ -182,10 +189,14 @@ pub fn paint_boundary(painter: &Painter, view: &ViewTransform, scene: &SceneFile
                         );
                     }
                 }
-                let label = match (normal != 0.0, shear != 0.0) {
+                let traction = match (normal != 0.0, shear != 0.0) {
                     (true, true) => format!("σ_n {}, τ {}", units::mpa(normal), units::mpa(shear)),
                     (false, true) => format!("τ {}", units::mpa(shear)),
                     _ => format!("σ_n {}", units::mpa(normal)),
+                };
+                let label = match load_factor {
+                    Some(l) => format!("λ {l:.3} × {traction}"),
+                    None => traction,
                 };
                 // Beside the arrows: above a horizontal side, between two
                 // arrows and past their tails on a vertical one.

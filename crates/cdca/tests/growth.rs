@@ -1004,6 +1004,24 @@ fn growth_that_cuts_the_specimen_apart_ends_through() {
     assert!(report.converged(), "{report:?}");
 }
 
+/// The default scene with its flaw replaced by `flaws` (end points, m;
+/// face friction; face cohesion, Pa), grown to its end.
+fn grown_layout(flaws: &[([[f64; 2]; 2], f64, f64)]) -> Simulation {
+    let mut s = bundled("specimen_single_flaw");
+    s.cracks = flaws
+        .iter()
+        .map(|&(points, friction, cohesion)| CrackSpec {
+            points: Some(points.to_vec()),
+            friction,
+            cohesion,
+            ..s.cracks[0].clone()
+        })
+        .collect();
+    let mut sim = Simulation::new(valid(s)).expect("valid");
+    run(&mut sim);
+    sim
+}
+
 /// A held-out layout (random layout 2 of `scripts/random_layouts.sh 40
 /// 11`: a 2 mm flaw with μ = 1.2, and a 7 mm cohesive one, 15 MPa, μ =
 /// 0.5) at step 17, when its lower wing has reached the bottom and its
@@ -1024,28 +1042,24 @@ fn growth_that_cuts_the_specimen_apart_ends_through() {
 /// happened to settle at λ 1.278.)
 #[test]
 fn a_trial_that_does_not_settle_from_its_warm_start_is_solved_cold() {
-    let mut s = bundled("specimen_single_flaw");
-    s.cracks = vec![
-        CrackSpec {
-            points: Some(vec![
+    let sim = grown_layout(&[
+        (
+            [
                 [0.016_899_747_903_419_62, 0.014_672_762_064_300_345],
                 [0.017_434_697_988_769_527, 0.012_717_042_596_484_655],
-            ]),
-            friction: 1.2,
-            ..s.cracks[0].clone()
-        },
-        CrackSpec {
-            points: Some(vec![
+            ],
+            1.2,
+            0.0,
+        ),
+        (
+            [
                 [0.009_617_241_802_022_409, 0.009_076_687_121_538_966],
                 [0.015_210_520_274_412_987, 0.013_353_958_123_482_39],
-            ]),
-            friction: 0.5,
-            cohesion: 15e6,
-            ..s.cracks[0].clone()
-        },
-    ];
-    let mut sim = Simulation::new(valid(s)).expect("valid");
-    run(&mut sim);
+            ],
+            0.5,
+            15e6,
+        ),
+    ]);
     let history = sim.history();
     let retried: Vec<(usize, Vec<f64>)> = history
         .iter()
@@ -1075,29 +1089,24 @@ fn a_trial_that_does_not_settle_from_its_warm_start_is_solved_cold() {
 /// longer exercises the rule: the last assertion says so.
 #[test]
 fn a_trial_that_does_not_converge_is_stepped_around() {
-    let mut s = bundled("specimen_single_flaw");
-    s.cracks = vec![
-        CrackSpec {
-            points: Some(vec![
+    let sim = grown_layout(&[
+        (
+            [
                 [0.017_373_425_736_637_946, 0.011_086_036_533_432_573],
                 [0.020_500_679_813_995_438, 0.017_565_268_443_355_254],
-            ]),
-            friction: 1.2,
-            cohesion: 15e6,
-            ..s.cracks[0].clone()
-        },
-        CrackSpec {
-            points: Some(vec![
+            ],
+            1.2,
+            15e6,
+        ),
+        (
+            [
                 [0.008_333_043_678_301_932, 0.013_401_749_793_131_664],
                 [0.012_879_819_518_394_83, 0.015_102_858_484_064_29],
-            ]),
-            friction: 0.2,
-            cohesion: 15e6,
-            ..s.cracks[0].clone()
-        },
-    ];
-    let mut sim = Simulation::new(valid(s)).expect("valid");
-    run(&mut sim);
+            ],
+            0.2,
+            15e6,
+        ),
+    ]);
     let history = sim.history();
     assert_eq!(sim.growth_finished(), Some(Outcome::Through));
     assert!(history.iter().all(|st| st.converged));

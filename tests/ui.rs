@@ -1241,6 +1241,10 @@ fn the_end_of_a_growth_run_is_solved_and_shown_at_the_printed_load() {
         "the field's load"
     );
     h.get_by_label(&format!("{last:.3}"));
+    // the default flaw's wings run out through the specimen: no free tip is
+    // left to inspect, and the inspector says why (not "Solve, then …")
+    assert_eq!(app.growth_outcome(), Some(cdca::report::Outcome::Through));
+    h.get_by_label("No free tip: every crack end meets a boundary or another crack.");
 
     let scene = app.scene();
     let (nx, ny) = (scene.mesh.nx, scene.mesh.ny);
@@ -1434,6 +1438,7 @@ fn a_run_that_cuts_the_specimen_through_says_it_split_and_keeps_the_last_field()
     );
     h.get_by_label("no (specimen split)");
     h.get_by_label_contains("Specimen split: the final cracks cut it through");
+    h.get_by_label("No free tip: the final cracks cut the specimen through.");
 }
 
 /// A shared link opens its scene (solved, as any opened scene); a

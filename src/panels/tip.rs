@@ -21,7 +21,16 @@ pub fn tip_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
     ui.heading("Tip inspector");
     let tips = &v.solution.tips;
     if tips.is_empty() {
-        ui.weak("Solve, then click a tip on the canvas.");
+        let sol = &v.solution;
+        ui.weak(if sol.split {
+            "No free tip: the final cracks cut the specimen through."
+        } else if !sol.solved {
+            "Solve, then click a tip on the canvas."
+        } else if v.scene.cracks.is_empty() {
+            "No crack: draw one to inspect its tips."
+        } else {
+            "No free tip: every crack end meets a boundary or another crack."
+        });
         return;
     }
     let name = |i: usize| {

@@ -92,6 +92,9 @@ pub struct WorkbenchApp {
     pub(crate) commands: Vec<Command>,
     pub(crate) message: Option<Message>,
     pub(crate) selected_tip: Option<usize>,
+    /// The user chose no tip in the inspector: no tip is picked for them
+    /// until they open another scene (see [`Self::refresh_tip_curve`]).
+    pub(crate) no_tip_wanted: bool,
     pub(crate) tip_curve: Option<TipCurve>,
     pub(crate) plot_tab: PlotTab,
     pub(crate) race: Option<Race>,
@@ -126,6 +129,7 @@ impl WorkbenchApp {
             commands: Vec::new(),
             message,
             selected_tip: None,
+            no_tip_wanted: false,
             tip_curve: None,
             plot_tab,
             race: None,
@@ -422,7 +426,17 @@ impl WorkbenchApp {
         })
     }
 
+    /// The inspected tip's σ_θθ / τ_rθ curve, for the current solution.
+    /// With none chosen, a solved scene's most loaded free tip (largest
+    /// √(K_I⁺² + K_II²)) is inspected, so that the inspector shows its
+    /// values and polar plot from the start.
     fn refresh_tip_curve(&mut self) {
+        let view = self.runner.view();
+        if self.selected_tip.is_none() && !self.no_tip_wanted && view.solved {
+            let load = |t: &cdca::report::TipReport| t.k1.max(0.0).hypot(t.k2);
+            self.selected_tip = (0..view.tips.len())
+                .max_by(|&a, &b| load(&view.tips[a]).total_cmp(&load(&view.tips[b])));
+        }
         let version = self.runner.view().version;
         match self.selected_tip {
             None => self.tip_curve = None,

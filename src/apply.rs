@@ -128,7 +128,10 @@ impl WorkbenchApp {
                     r.cancel();
                 }
             }
-            Command::SelectTip(tip) => self.selected_tip = tip,
+            Command::SelectTip(tip) => {
+                self.selected_tip = tip;
+                self.no_tip_wanted = tip.is_none();
+            }
             Command::DismissMessage => self.message = None,
         }
     }
@@ -232,6 +235,7 @@ impl WorkbenchApp {
         self.editor = crate::edit::Editor::default();
         self.message = None;
         self.runner.forget_contact();
+        self.no_tip_wanted = false;
         self.scene_changed(false);
     }
 

@@ -655,16 +655,27 @@ fn default_scene_opens_solved_and_a_tip_can_be_inspected() {
     assert!(app.message().is_none(), "{:?}", app.message());
     let tips = app.tip_positions();
     assert_eq!(tips.len(), 2, "the closed crack has two free tips");
-    let at = app.screen_from_world(tips[1]);
+    // the most loaded tip is inspected from the start
+    let (first, curve) = app.inspected_tip().expect("a tip is inspected on open");
+    assert!(first < 2 && curve, "tip {first} with its curve");
+    h.get_by_label("Decision");
+    let at = app.screen_from_world(tips[1 - first]);
     click_at(&mut h, at);
     h.run_steps(3);
     assert_eq!(
         h.state().inspected_tip(),
-        Some((1, true)),
-        "tip 2 inspected, with its σ_θθ / τ_rθ curve"
+        Some((1 - first, true)),
+        "the other tip inspected, with its σ_θθ / τ_rθ curve"
     );
     h.get_by_label("K_I");
     h.get_by_label("Decision");
+    // a click elsewhere keeps it; "none" in the inspector clears it for good
+    click_at(&mut h, egui::pos2(at.x + 80.0, at.y - 80.0));
+    h.run_steps(3);
+    assert_eq!(h.state().inspected_tip(), Some((1 - first, true)));
+    h.state_mut().push(Command::SelectTip(None));
+    h.run_steps(3);
+    assert_eq!(h.state().inspected_tip(), None);
 }
 
 #[test]

@@ -197,7 +197,9 @@ impl Canvas {
                 input.solution.tips.iter().position(|t| {
                     self.view.screen_from_world([t.x, t.y]).distance(p) < PICK_RADIUS
                 });
-            if tip.is_some() || input.selected_tip.is_some() {
+            // a click on a tip inspects it; elsewhere the inspected tip
+            // stays (the inspector's "none" clears it)
+            if tip.is_some() {
                 cmds.push(Command::SelectTip(tip));
             }
             editor.selected_crack = hovered_vertex

@@ -372,17 +372,18 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         if let Some(r) = view.relax {
             ui.label("Last solve");
             let text = format!(
-                "{}, residual {:.2e}{}",
+                "{}, residual {:.2e}",
                 iterations(view.solver, r.iterations),
-                r.residual,
-                if r.finished && !r.converged {
-                    ", NOT converged"
-                } else {
-                    ""
-                }
+                r.residual
             );
+            // the verdict on a row of its own: on one line with the count it
+            // widened the panel past the window
             if r.finished && !r.converged {
-                ui.colored_label(ui.visuals().warn_fg_color, text);
+                let warn = ui.visuals().warn_fg_color;
+                ui.colored_label(warn, text);
+                ui.end_row();
+                ui.label("");
+                ui.colored_label(warn, "NOT converged");
             } else {
                 ui.label(text);
             }

@@ -472,6 +472,16 @@ fn solve_exits_1_when_the_contact_iteration_is_capped() {
     assert_eq!(report["contact"]["iterations"], 1);
     assert_eq!(report["solver"]["converged"], true);
     assert_eq!(report["contact"]["capped"], true);
+    // the test that failed, by count: points left out of their Coulomb state
+    let unsettled = report["contact"]["unsettled"].as_u64().unwrap_or(0);
+    assert!(unsettled > 0, "{}", report["contact"]);
+    assert!(
+        run.stderr.contains(&format!(
+            "{unsettled} points not yet in their Coulomb state"
+        )),
+        "{}",
+        run.stderr
+    );
     assert_eq!(run.stderr.trim_end().lines().count(), 1, "{}", run.stderr);
     assert!(
         run.stderr.starts_with(
@@ -490,6 +500,10 @@ fn solve_exits_1_when_the_contact_iteration_is_capped() {
     assert!(
         report["contact"].get("capped").is_none(),
         "written only when true"
+    );
+    assert!(
+        report["contact"].get("unsettled").is_none(),
+        "written only when not zero"
     );
 }
 

@@ -85,6 +85,17 @@ pub struct ContactReport {
     /// still moving (written only when true).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub capped: bool,
+    /// Points the last contact iteration left unsettled: those whose state
+    /// it changed or, when none changed, those not in their Coulomb state
+    /// at its solution (written only when not zero).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub unsettled: usize,
+}
+
+// serde's `skip_serializing_if` passes the field by reference
+#[allow(clippy::trivially_copy_pass_by_ref)]
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 /// Stress intensity factors and the criterion's decision at one free tip.
@@ -262,10 +273,10 @@ impl SolveReport {
         } else if c.capped {
             Some(format!(
                 "the contact iteration did not settle within {} contact iterations \
-                 (solver.max_contact_iterations): states still changing or, with slip, \
-                 u still moving (last relative change {:.3e}); {} points cycling \
-                 between states",
-                c.iterations, c.residual, c.cycling
+                 (solver.max_contact_iterations): {} points not yet in their Coulomb \
+                 state ({} cycling between states), last relative change of u or of \
+                 the friction limits {:.3e} (solver.contact_tolerance)",
+                c.iterations, c.unsettled, c.cycling, c.residual
             ))
         } else if c.violating > 0 {
             Some(format!(

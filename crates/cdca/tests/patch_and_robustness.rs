@@ -2,6 +2,7 @@
 
 mod common;
 
+use cdca::ContactState;
 use cdca::scene::{CrackSpec, Fix, PointSupport};
 use common::*;
 
@@ -416,4 +417,73 @@ fn a_closed_flaw_anywhere_in_its_elements_keeps_its_sifs() {
     );
     assert!(worst_k1 < 0.10, "{worst_k1}");
     assert!(worst_k2 < 0.04, "{worst_k2}");
+}
+
+/// A crack a run grew to its end (random layout 34 of
+/// `scripts/random_layouts.sh 40 3`: a 7 mm flaw with μ = 1.2, its wings
+/// run to 0.5 mm from the top and to the bottom), solved at its scene's
+/// load and at twice it. The piece at the kink between the flaw and its
+/// upper wing (0.06 h long) slips pressed shut: raising its friction limit
+/// raises its normal pressure by about as much (G(τ) − τ ≈ 0.3 GPa at
+/// every limit). The outer loop's Anderson mixing extrapolated that limit
+/// below zero, cut it back to zero, and kept the piece slipping free: the
+/// contact iteration ran to its cap (200) at every load, with the
+/// displacement still and one point not in its Coulomb state, and the run
+/// stopped `not_converged`. The mixing now restarts from the plain step
+/// when it would take a limit the plain step raises below zero: converged,
+/// every closed point obeys Coulomb (|p_T| ≤ μ|p_N|, = where it slips, to
+/// 1e-6), and, with no cohesion, the tractions are homogeneous of degree
+/// one in the load (p(2λ) = 2 p(λ) to 1e-6 of the largest).
+#[test]
+fn a_kink_whose_friction_presses_it_shut_converges() {
+    let mut s = bundled("specimen_single_flaw");
+    s.cracks = vec![CrackSpec {
+        points: Some(vec![
+            [0.004252336647248705, 0.029529705301653546],
+            [0.0037009705601826, 0.028134715897380733],
+            [0.003409639800469361, 0.026663279052509398],
+            [0.003887040662992589, 0.025241277499605155],
+            [0.004351390682071007, 0.0238149608938749],
+            [0.0048315705515527795, 0.02239389534544145],
+            [0.005328307269646388, 0.020978532270856845],
+            [0.0058272492621776716, 0.01956394509146884],
+            [0.006382017735909722, 0.018170305274101017],
+            [0.006907632866066541, 0.016765410710459235],
+            [0.0075821906850414645, 0.015425645153035177],
+            [0.00811481927978491, 0.014023394540604708],
+            [0.01291880908030207, 0.008975655724319687],
+            [0.013453797213431873, 0.007574303628160306],
+            [0.014073427949892069, 0.006208266384731784],
+            [0.014555133685815895, 0.00478771734158752],
+            [0.015017349128624204, 0.003360707571323308],
+            [0.015473323155135959, 0.0019316912358160272],
+            [0.015950804690366912, 0.0005097167692683705],
+            [0.016129337941690594, 0.0],
+        ]),
+        friction: 1.2,
+        ..s.cracks[0].clone()
+    }];
+    let tractions = |scale: f64| {
+        let mut s = s.clone();
+        if let cdca::scene::SideBc::Traction { normal, .. } = &mut s.boundary.top {
+            *normal *= scale;
+        }
+        let mut sim = cdca::Simulation::new(valid(s)).expect("valid");
+        let r = sim.solve().expect("solve");
+        assert!(r.converged(), "{:?}", r.failure());
+        println!("load ×{scale}: {:?}", r.contact);
+        sim.contact_points()
+    };
+    let (one, two) = (tractions(1.0), tractions(2.0));
+    let largest = one.iter().map(|p| p.p_n.abs()).fold(0.0, f64::max);
+    for (p, q) in one.iter().zip(&two) {
+        match p.state {
+            ContactState::Open => assert_eq!(p.p_n, 0.0),
+            ContactState::Stick => assert!(p.p_t.abs() <= 1.2 * p.p_n.abs() * (1.0 + 1e-6)),
+            ContactState::Slip => assert!(rel(p.p_t.abs(), 1.2 * p.p_n.abs()) < 1e-6),
+        }
+        assert_eq!(p.state, q.state);
+        assert!((q.p_n - 2.0 * p.p_n).abs() <= 1e-6 * 2.0 * largest);
+        assert!((q.p_t - 2.0 * p.p_t).abs() <= 1e-6 * 2.0 * largest);
+    }
 }

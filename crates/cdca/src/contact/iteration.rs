@@ -79,6 +79,10 @@ pub struct ContactInfo {
     /// Frozen points whose kept state is not the one the return mapping
     /// gives at the final displacement (they break the stick/slip rule).
     pub violating: usize,
+    /// [`ContactSolve`]: points the last iteration left unsettled, those
+    /// whose state it changed or, when none changed, those not in their
+    /// Coulomb state at the solution (0 once converged).
+    pub unsettled: usize,
     /// Linear iterations summed over the contact iterations.
     pub linear_iterations: usize,
     /// The last linear solve.
@@ -113,7 +117,9 @@ pub struct ContactInfo {
 ///   system is then exact;
 /// - the outer loop then sets `τ_y ← μ|p_N| + c_c` from that solution
 ///   (zero where open), Anderson-mixed over the last [`ANDERSON_DEPTH`]
-///   limit vectors, until the Coulomb return mapping at the solution gives
+///   limit vectors (restarted from the plain step when the mix would take
+///   a limit that step raises below zero), until the Coulomb return
+///   mapping at the solution gives
 ///   the same states and the limits or the solution settle
 ///   (`‖Δτ‖ ≤ tolerance ‖τ‖` or `‖Δu‖ ≤ tolerance ‖u‖` between inner
 ///   solutions). The limits start from the initial states.
@@ -393,6 +399,14 @@ impl ContactSolve {
         );
         let mut residual = change;
         let mut settled = false;
+        let differ = |a: &[(ContactState, bool, bool)], b: &[(ContactState, bool, bool)]| {
+            a.iter().zip(b).filter(|(p, q)| p != q).count()
+        };
+        let mut unsettled = if changed > 0 {
+            changed
+        } else {
+            differ(&signature(&states), &system.signature)
+        };
         if changed == 0 && signature(&states) == system.signature {
             // g solves the inner (Tresca) problem of these limits exactly
             let target = coulomb_limits(x, u);
@@ -413,16 +427,29 @@ impl ContactSolve {
             let limit_change = relative_change(&slipping(&target), &slipping(&limits));
             residual = outer.map_or(limit_change, |c| c.min(limit_change));
             let coulomb = coulomb_states(x, u, committed);
-            if signature(&coulomb) == signature(&states) && residual <= self.params.tolerance {
+            unsettled = differ(&signature(&coulomb), &signature(&states));
+            if unsettled == 0 && residual <= self.params.tolerance {
                 settled = true;
                 states = coulomb;
             } else if more {
                 self.inner_solution = Some(u.clone());
-                // limits are not negative
-                let next = self
-                    .limit_mix
-                    .push(&limits, &target)
-                    .map_or(target, |m| m.into_iter().map(|v| v.max(0.0)).collect());
+                // limits are not negative. A mixed step that would take a
+                // limit the plain step raises below zero extrapolates past
+                // what the history supports (a point whose friction presses
+                // it shut, as at a kink in a crack, has G(τ) − τ about
+                // constant): cut back to zero it kept that point slipping
+                // free, forever. The mixing then restarts from the plain
+                // step.
+                let next = match self.limit_mix.push(&limits, &target) {
+                    Some(m) if m.iter().zip(&target).all(|(v, t)| *v >= 0.0 || *t <= 0.0) => {
+                        m.into_iter().map(|v| v.max(0.0)).collect()
+                    }
+                    Some(_) => {
+                        self.limit_mix = Anderson::default();
+                        target
+                    }
+                    None => target,
+                };
                 states.clone_from(&self.reached.states);
                 update_limited(
                     x,
@@ -466,6 +493,7 @@ impl ContactSolve {
         self.reached.states = states;
         self.reached.info.iterations = it;
         self.reached.info.residual = residual;
+        self.reached.info.unsettled = unsettled;
         if !residual.is_finite() {
             return Err(SolveError::NonFinite {
                 place: format!("contact iteration {it}"),

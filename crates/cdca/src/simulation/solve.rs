@@ -94,6 +94,7 @@ impl Simulation {
                 violating: info.violating,
                 residual: info.residual,
                 capped: info.capped,
+                unsettled: info.unsettled,
             },
             tips: self.scratch.tips.clone(),
             // filled where a solve is reported, not for every λ_cr trial

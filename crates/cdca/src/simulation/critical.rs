@@ -93,8 +93,9 @@ impl Simulation {
         if !report.converged() && !run.cold {
             // the warm start (the last trial's contact states and
             // displacement) only speeds the contact iteration up; a trial
-            // that does not settle from it is solved once more from none,
-            // as a fresh solve of the scene at that load would be
+            // that does not settle from it is solved once more from a cold
+            // start (no displacement, no guessed states), as a fresh solve
+            // of the scene at that load would be
             run.cold = true;
             run.cold_trials.push(lambda);
             self.scratch.critical = Some(run);

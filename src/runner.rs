@@ -289,7 +289,15 @@ impl Runner {
         self.last_solve_seconds = Some(start.elapsed().as_secs_f64());
         let mesh = &sim.scene().mesh;
         self.last_solve_elements = mesh.nx * mesh.ny;
-        self.refresh(true, None);
+        // the status of the solve, as a relaxation's would be: a capped
+        // contact iteration is shown as not converged, not as solved
+        let status = result.as_ref().ok().map(|r| cdca::RelaxStatus {
+            iterations: r.contact.iterations.max(1),
+            residual: r.solver.residual,
+            converged: r.converged(),
+            finished: true,
+        });
+        self.refresh(true, status);
         result.map(|_| ()).map_err(|e| e.to_string())
     }
 

@@ -1148,7 +1148,8 @@ fn a_friction_study_records_the_first_growth_of_each_value() {
 
 /// A relaxation stopped at its cap (the automaton with at most 50 sweeps,
 /// far from the 1e-10 tolerance) is shown as not converged, in the warning
-/// line with its sweep count and residual.
+/// line with its sweep count and residual; so is a direct solve whose
+/// contact iteration stopped at its cap (2).
 #[test]
 #[cfg_attr(
     debug_assertions,
@@ -1174,6 +1175,19 @@ fn a_capped_relaxation_is_shown_as_not_converged() {
     assert!(r.is_some_and(|r| r.finished && !r.converged), "{r:?}");
     h.get_by_label_contains("Not converged: the solve stopped at a cap after");
     h.get_by_label_contains("NOT converged");
+    h.get_by_label("no (not converged)");
+
+    // the direct solver's contact iteration stopped at its cap says so too
+    // (it read "Solved: yes", with no warning, and K_II twice the value)
+    edit_scene(&mut h, |s| {
+        s.solver.kind = cdca::scene::SolverKind::Direct;
+        s.solver.max_contact_iterations = 2;
+    });
+    h.run_steps(3);
+    let r = h.state().relax_status();
+    assert!(r.is_some_and(|r| r.finished && !r.converged), "{r:?}");
+    h.get_by_label("no (not converged)");
+    h.get_by_label_contains("Not converged: the solve stopped at a cap after 2 linear solves");
 }
 
 /// Runs frames until the run in progress has ended (paused), at most

@@ -363,7 +363,9 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
     }
     Grid::new("status").num_columns(2).show(ui, |ui| {
         ui.label("Solved");
+        let capped = view.relax.is_some_and(|r| r.finished && !r.converged);
         ui.label(match (view.solved, view.split) {
+            (true, _) if capped => "no (not converged)",
             (true, _) => "yes",
             (false, true) => "no (specimen split)",
             (false, false) => "no",

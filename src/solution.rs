@@ -51,6 +51,10 @@ pub struct SolutionView {
     pub split: bool,
     /// The rock away from the cracks against its strength, when solved.
     pub intact_rock: Option<IntactRockReport>,
+    /// Which convergence test failed, in the solver's words
+    /// ([`SolveReport::failure`](cdca::report::SolveReport::failure)), when
+    /// the last solve ended without converging.
+    pub failure: Option<String>,
     /// Crack-face points in contact (stick or slip) at the last solve of
     /// this scene; `None` before one, or without face points. Kept while
     /// the next solve runs, so that the panels do not flicker while a tip
@@ -68,6 +72,9 @@ impl SolutionView {
         self.split = false;
         self.live = !solved && sim.is_relaxing();
         self.relax = relax;
+        self.failure = relax
+            .filter(|r| r.finished && !r.converged)
+            .and_then(|_| sim.report(0.0).failure());
         self.solver = sim.scene().solver.kind;
         self.rebuild = sim.rebuild_progress();
         self.cracks = sim.cracks();

@@ -528,12 +528,18 @@ fn growth_progress(view: &crate::solution::SolutionView) -> String {
 fn unconverged_ui(ui: &mut Ui, view: &crate::solution::SolutionView) {
     let warn = ui.visuals().warn_fg_color;
     if let Some(r) = view.relax.filter(|r| r.finished && !r.converged) {
+        // the test that failed in the solver's words (as `cdca solve`
+        // prints it), else the count and residual
+        let why = view.failure.clone().unwrap_or_else(|| {
+            format!(
+                "the solve stopped at a cap after {}, residual {:.2e}",
+                iterations(view.solver, r.iterations),
+                r.residual
+            )
+        });
         ui.colored_label(
             warn,
-            format!(
-                "Not converged: the solve stopped at a cap after {}, residual {:.2e}. The field shown is not a solution (raise Max iterations or Max contact iterations).",
-                iterations(view.solver, r.iterations), r.residual
-            ),
+            format!("Not converged: {why}. The field shown is not a solution."),
         );
     }
     if let Some(s) = view.history.iter().rev().find(|s| !s.converged) {

@@ -402,12 +402,13 @@ impl ContactSolve {
         let differ = |a: &[(ContactState, bool, bool)], b: &[(ContactState, bool, bool)]| {
             a.iter().zip(b).filter(|(p, q)| p != q).count()
         };
+        let sig = signature(&states);
         let mut unsettled = if changed > 0 {
             changed
         } else {
-            differ(&signature(&states), &system.signature)
+            differ(&sig, &system.signature)
         };
-        if changed == 0 && signature(&states) == system.signature {
+        if unsettled == 0 {
             // g solves the inner (Tresca) problem of these limits exactly
             let target = coulomb_limits(x, u);
             let outer = self.inner_solution.as_ref().map(|p| relative_change(u, p));
@@ -427,7 +428,7 @@ impl ContactSolve {
             let limit_change = relative_change(&slipping(&target), &slipping(&limits));
             residual = outer.map_or(limit_change, |c| c.min(limit_change));
             let coulomb = coulomb_states(x, u, committed);
-            unsettled = differ(&signature(&coulomb), &signature(&states));
+            unsettled = differ(&signature(&coulomb), &sig);
             if unsettled == 0 && residual <= self.params.tolerance {
                 settled = true;
                 states = coulomb;

@@ -1599,3 +1599,42 @@ fn a_step_that_stepped_around_an_unsolved_trial_says_so() {
     let overflow = widgets_under_the_canvas(&h);
     assert!(overflow.is_empty(), "{}", overflow.join("\n"));
 }
+
+/// A load ramp that stays below every tip's criterion ends `completed`
+/// with no tip grown: the Angles tab says that (not "no growth steps
+/// yet"), and the outcome says on hover what `completed` means for a
+/// load-stepped run.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn a_load_ramp_below_the_criterion_says_no_tip_grew() {
+    let mut h = solved_default();
+    edit_scene(&mut h, |s| {
+        s.growth.control = cdca::scene::GrowthControl::Load;
+        s.growth.load_steps = 3;
+        // a hundredth of the default load: far below first growth (λ_cr ≈ 0.7)
+        s.boundary.top = cdca::scene::SideBc::Traction {
+            normal: -1e6,
+            shear: 0.0,
+        };
+    });
+    h.run_steps(5);
+    h.get_by_label("Angles").click();
+    h.get_by_label("Run growth").click();
+    h.run_steps(2);
+    run_until_paused(&mut h, 2000);
+    h.run_steps(3);
+    assert_eq!(
+        h.state().growth_outcome(),
+        Some(cdca::report::Outcome::Completed)
+    );
+    assert_eq!(h.state().growth_history().len(), 3);
+    h.get_by_label(
+        "No tip has grown in 3 growth steps: every tip stayed below its criterion (the tip inspector shows how far).",
+    );
+    h.get_by_label("completed").hover();
+    h.run_steps(60);
+    h.get_by_label("All 3 load steps applied (growth.load_steps).");
+}

@@ -62,18 +62,24 @@ pub fn plots_ui(
         _ => match figs.first() {
             Some(fig) => figure_ui(ui, tab, 0, fig, cmds),
             None => {
-                ui.weak(empty_hint(tab));
+                ui.weak(empty_hint(tab, v.solution.history.len()));
             }
         },
     }
 }
 
-fn empty_hint(tab: PlotTab) -> &'static str {
+/// What an empty plot says: how to fill it, or, after `steps` growth steps
+/// in which no tip grew (a load ramp below every tip's criterion), that.
+fn empty_hint(tab: PlotTab, steps: usize) -> String {
     match tab {
         PlotTab::ResidualBySweep | PlotTab::ResidualByTime => {
-            "No residual history: the direct solver solves in one step. Choose an iterative solver and press Step or Relax."
+            "No residual history: the direct solver solves in one step. Choose an iterative solver and press Step or Relax.".to_owned()
         }
-        _ => "No growth steps yet: press Grow one step or Run growth.",
+        _ if steps > 0 => format!(
+            "No tip has grown in {steps} growth step{}: every tip stayed below its criterion (the tip inspector shows how far).",
+            if steps == 1 { "" } else { "s" }
+        ),
+        _ => "No growth steps yet: press Grow one step or Run growth.".to_owned(),
     }
 }
 

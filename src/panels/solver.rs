@@ -1,7 +1,8 @@
 //! Solver choice and settings, the run controls and the progress of the
 //! work in hand.
 
-use cdca::scene::{ContactUpdate, Ordering, SolverKind};
+use cdca::report::Outcome;
+use cdca::scene::{ContactUpdate, GrowthControl, GrowthSpec, Ordering, SolverKind};
 use cdca::solvers::automaton::sor_omega;
 use egui::{Button, Grid, ProgressBar, Ui};
 
@@ -411,13 +412,13 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         }
         if let Some(o) = view.outcome {
             ui.label("Outcome");
-            let text = format!("{o:?}").to_lowercase();
-            if o == cdca::report::Outcome::NotConverged {
+            let (text, meaning) = outcome_text(o, &v.scene.growth);
+            if o == Outcome::NotConverged {
                 let why = view.history.iter().rev().find_map(|s| s.failure.clone());
                 ui.colored_label(ui.visuals().warn_fg_color, text)
                     .on_hover_text(why.unwrap_or_default());
             } else {
-                ui.label(text);
+                ui.label(text).on_hover_text(meaning);
             }
             ui.end_row();
         }
@@ -434,6 +435,51 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         }
     });
     stepped_around_ui(ui, &view.history);
+}
+
+/// How a growth run ended, as the report spells it (`outcome`), and what
+/// that means for this scene's growth control (shown on hover).
+fn outcome_text(o: Outcome, growth: &GrowthSpec) -> (&'static str, String) {
+    match o {
+        Outcome::Completed if growth.control == GrowthControl::Critical => (
+            "completed",
+            format!(
+                "No free tip meets its criterion up to λ = {} (growth.max_load_factor).",
+                growth.max_load_factor
+            ),
+        ),
+        Outcome::Completed => (
+            "completed",
+            format!(
+                "All {} load steps applied (growth.load_steps).",
+                growth.load_steps
+            ),
+        ),
+        Outcome::Unstable => (
+            "unstable",
+            format!(
+                "A tip went on growing at one load for {} steps (growth.max_growth_per_step): \
+                 unstable growth.",
+                growth.max_growth_per_step
+            ),
+        ),
+        Outcome::Through => (
+            "through",
+            "The cracks run through the specimen: it has failed.".to_owned(),
+        ),
+        Outcome::MaxSteps => (
+            "max_steps",
+            format!(
+                "Stopped after {} steps (growth.max_steps).",
+                growth.max_steps
+            ),
+        ),
+        Outcome::NotConverged => ("not_converged", String::new()),
+        Outcome::Error => (
+            "error",
+            "A step's solve failed with an error: growth stopped before it.".to_owned(),
+        ),
+    }
 }
 
 /// Steps whose λ_cr search moved away from a trial that did not converge

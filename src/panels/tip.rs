@@ -146,10 +146,15 @@ fn polar_plot_ui(ui: &mut Ui, scene: &SceneFile, tip: &TipReport, c: &CriterionC
         .copied()
         .fold(c.sigma_t, f64::max)
         - base;
+    // base ≤ 0: the radius is the value shifted out by |base|
+    let shift = if base < 0.0 {
+        format!(" + {}", units::mpa(-base))
+    } else {
+        String::new()
+    };
     ui.label(format!(
-        "On r0 = {}, θ = 0 straight ahead, radius = value − ({}):",
+        "On r0 = {}, θ = 0 straight ahead, radius = value{shift}:",
         units::mm(c.r0),
-        units::mpa(base)
     ));
     if comprehensive && c.shear_envelope.is_none() {
         ui.weak("Shear branch off: the faces at this tip are open.");

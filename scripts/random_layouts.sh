@@ -5,13 +5,17 @@
 # 0–1.2 and, on about a third of them, face cohesion 2–15 MPa, grown to
 # failure with `cdca grow` (60 × 60, product defaults). Prints one row per
 # scene (outcome, steps, whether every step converged, the first growth)
-# and a summary, and writes bench-out/random_layouts.csv.
-# Usage: bash scripts/random_layouts.sh [COUNT] [SEED]
+# and a summary, and writes bench-out/random_layouts.csv. MESH sets the
+# elements per side, SOLVER the linear solver (direct, automaton, cg,
+# multigrid), and LOAD_STEPS=N grows under load control instead: the load
+# ramped to 150 MPa in N steps, at most 20 growths per step, 80 steps.
+# Usage: [MESH=60] [SOLVER=direct] [LOAD_STEPS=N] bash scripts/random_layouts.sh [COUNT] [SEED]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p cdca-cli
 mkdir -p bench-out/random_layouts
-COUNT="${1:-40}" SEED="${2:-7}" python3 - <<'PY'
+COUNT="${1:-40}" SEED="${2:-7}" MESH="${MESH:-60}" SOLVER="${SOLVER:-direct}" \
+    LOAD_STEPS="${LOAD_STEPS:-}" python3 - <<'PY'
 import collections, csv, json, math, os, random, subprocess
 count, seed = int(os.environ["COUNT"]), int(os.environ["SEED"])
 rng = random.Random(seed)
@@ -31,6 +35,12 @@ for i in range(count):
             crack["cohesion"] = rng.choice([2e6, 8e6, 15e6])
         cracks.append(crack)
     scene["cracks"], scene["name"] = cracks, f"random layout {i}"
+    n = int(os.environ["MESH"])
+    scene["mesh"], scene["solver"] = {"nx": n, "ny": n}, {"kind": os.environ["SOLVER"]}
+    if os.environ["LOAD_STEPS"]:
+        scene["growth"].update(control="load", load_steps=int(os.environ["LOAD_STEPS"]),
+                               max_growth_per_step=20, max_steps=80)
+        scene["boundary"]["top"]["normal"] = -150e6
     path = f"bench-out/random_layouts/r{i:02d}.json"
     json.dump(scene, open(path, "w"), indent=1)
     run = subprocess.run(["target/release/cdca", "grow", path], capture_output=True, text=True)
@@ -41,8 +51,8 @@ for i in range(count):
     report = json.loads(run.stdout)
     steps = report["steps"]
     converged = all(s["converged"] for s in steps)
-    grown = [g for s in steps for g in s["grown"]]
-    first = f"{grown[0]['mode']} {abs(grown[0]['angle_deg']):.1f}° at λ = {steps[0]['load_factor']:.3f}" if grown else "none"
+    at = next((s for s in steps if s["grown"]), None)
+    first = f"{at['grown'][0]['mode']} {abs(at['grown'][0]['angle_deg']):.1f}° at λ = {at['load_factor']:.3f}" if at else "none"
     outcomes[report["outcome"]] += 1
     print(f"r{i:02d}   {len(cracks):5d}  {report['outcome']:14s} {len(steps):5d} {str(converged):>9s}  {first}")
     rows.append([i, len(cracks), report["outcome"], len(steps), converged, first])

@@ -829,7 +829,7 @@ fn drawn_flaws_grow_wings_with_the_default_contact() {
 /// The first growth of a 3.5 mm closed flaw drawn through the default
 /// specimen's centre (off the grid), over the whole range of issue 17:
 /// every angle β = 30–60° in steps of 5° and every μ = 0–0.6 in steps of
-/// 0.1 at which the faces slide (47 of 49). Every first growth in tension
+/// 0.1 at which the faces slide (48 of 49). Every first growth in tension
 /// kinks at the default sampling's closed form for a sliding crack in an
 /// infinite plate ([`sliding_crack_kink`] at r0 = a/5π) within 1°
 /// (measured within 0.3°), and at each β its angle falls strictly as μ
@@ -837,7 +837,7 @@ fn drawn_flaws_grow_wings_with_the_default_contact() {
 /// wing's load diverges as 1/(τ − μσ_n): τ − μσ_n below 0.1σ (measured: the
 /// two flaws at 0.058σ and 0.067σ, at λ = 2.15, 2.7 times the rock's
 /// strength). The README's table (*The whole range, first growth*): 40 of
-/// the 47 start tension wings at 55–85° to the flaw; five steep flaws with
+/// the 48 start tension wings at 55–85° to the flaw; six steep flaws with
 /// friction at 48.9–54.5°.
 #[test]
 fn first_growth_over_the_flaw_range_follows_the_closed_form() {

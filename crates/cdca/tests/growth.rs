@@ -737,6 +737,31 @@ fn stepped_pair_converges_on_the_default_contact() {
     }
 }
 
+/// The default scene with one closed flaw of length `len` at `deg` through
+/// `c`, face friction `mu`, grown to failure; with each wing's length in
+/// flaw lengths and the angle from the vertical of its last flaw length.
+fn grown_flaw(c: (f64, f64), len: f64, deg: f64, mu: f64) -> (Simulation, Vec<(f64, f64)>) {
+    let t = deg.to_radians();
+    let mut s = bundled("specimen_single_flaw");
+    let mut crack = centre_crack(c.0, c.1, 0.5 * len, deg);
+    crack.friction = mu;
+    s.cracks = vec![crack];
+    let mut sim = Simulation::new(valid(s)).expect("valid");
+    run(&mut sim);
+    let flaw = [
+        [c.0 - 0.5 * len * t.cos(), c.1 - 0.5 * len * t.sin()],
+        [c.0 + 0.5 * len * t.cos(), c.1 + 0.5 * len * t.sin()],
+    ];
+    let wings = [0, 1]
+        .iter()
+        .map(|&k| {
+            let w = wing_from_point(&sim.cracks()[0], flaw[k], k);
+            (length(&w) / len, end_angle_from_vertical(&w, len))
+        })
+        .collect();
+    (sim, wings)
+}
+
 /// Issue 17's held-out flaws: a closed flaw drawn in the default scene as a
 /// user would (the contact a drawn crack gets: no joint stiffness, the
 /// penalty), 3.4–4 mm long at 30–60° off centre (tips inside elements),
@@ -778,29 +803,13 @@ fn drawn_flaws_grow_wings_with_the_default_contact() {
         let (len, t) = (len_mm * 1e-3, f64::to_radians(deg));
         // sliding is possible: τ = σ sin α cos α > μ σ cos² α
         assert!(t.sin() > mu * t.cos(), "flaw {i} cannot slide");
-        let mut s = bundled("specimen_single_flaw");
         let c = (0.01493 + 1e-4 * i as f64, 0.01517 - 7e-5 * i as f64);
-        let mut crack = centre_crack(c.0, c.1, 0.5 * len, deg);
-        crack.friction = mu;
-        s.cracks = vec![crack];
-        let mut sim = Simulation::new(valid(s)).expect("valid");
-        run(&mut sim);
+        let (sim, wings) = grown_flaw(c, len, deg, mu);
         let steps = sim.history();
         let name = format!("{len_mm} mm at {deg}°, μ = {mu}");
         let first: Vec<_> = steps.iter().flat_map(|s| s.grown.clone()).take(2).collect();
         let a = 0.5 * len;
         let (_, kink) = sliding_crack_kink(deg, mu, a, a / (5.0 * PI));
-        let flaw = [
-            [c.0 - 0.5 * len * t.cos(), c.1 - 0.5 * len * t.sin()],
-            [c.0 + 0.5 * len * t.cos(), c.1 + 0.5 * len * t.sin()],
-        ];
-        let wings: Vec<(f64, f64)> = [0, 1]
-            .iter()
-            .map(|&k| {
-                let w = wing_from_point(&sim.cracks()[0], flaw[k], k);
-                (length(&w) / len, end_angle_from_vertical(&w, len))
-            })
-            .collect();
         println!(
             "{name}: {:?} after {} steps; first {:?} (closed form {kink:.1}°); \
              wings (length / flaw, end angle) {wings:.2?}",
@@ -904,23 +913,7 @@ fn the_whole_flaw_range_grows_wings_to_the_load_axis() {
                 continue;
             }
             let c = (0.015 + 0.37 * h, 0.015 + 0.21 * h);
-            let mut s = bundled("specimen_single_flaw");
-            let mut crack = centre_crack(c.0, c.1, 0.5 * len, deg);
-            crack.friction = mu;
-            s.cracks = vec![crack];
-            let mut sim = Simulation::new(valid(s)).expect("valid");
-            run(&mut sim);
-            let flaw = [
-                [c.0 - 0.5 * len * t.cos(), c.1 - 0.5 * len * t.sin()],
-                [c.0 + 0.5 * len * t.cos(), c.1 + 0.5 * len * t.sin()],
-            ];
-            let wings: Vec<(f64, f64)> = [0, 1]
-                .iter()
-                .map(|&k| {
-                    let w = wing_from_point(&sim.cracks()[0], flaw[k], k);
-                    (length(&w) / len, end_angle_from_vertical(&w, len))
-                })
-                .collect();
+            let (sim, wings) = grown_flaw(c, len, deg, mu);
             let converged = sim.history().iter().all(|st| st.converged);
             println!(
                 "{deg}°, μ {mu}: {:?} after {} steps, every step converged {converged}; \

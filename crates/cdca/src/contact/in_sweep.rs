@@ -51,12 +51,15 @@
 use web_time::Instant;
 
 use crate::contact::iteration::{
-    ContactParams, FlipTracker, Reached, breaks_law, forced, relative_change, update_followers,
+    ContactParams, FlipTracker, Reached, relative_change, update_followers,
 };
-use crate::contact::law::{ContactState, FaceState, contact_system, gaps, update_point};
+use crate::contact::law::{
+    ContactState, FaceState, contact_system, coulomb_limit, gaps, update_point,
+};
 use crate::discretisation::dofs::FIXED;
 use crate::discretisation::xfem::{FacePoint, Xfem};
 use crate::error::SolveError;
+use crate::geometry::cracks::Crack;
 use crate::scene::Ordering;
 use crate::solvers::automaton::{Automaton, AutomatonParams, relative};
 use crate::solvers::cells::Cells;
@@ -494,4 +497,72 @@ fn final_check(
         }
     }
     (consistent, violating)
+}
+
+/// Relative size of a frozen point's departure from the contact law below
+/// which it still counts as obeying it: a normal gap of this fraction of
+/// the crack's largest jump, or a tangential traction within this fraction
+/// of the Coulomb limit.
+const FROZEN_TOLERANCE: f64 = 1e-2;
+
+/// Whether a frozen point whose kept state is `kept` breaks the contact
+/// law by more than [`FROZEN_TOLERANCE`], given the return mapping's state
+/// `new` at its gaps (`g_T` = `gt`, the normal gap in `new`): a normal gap
+/// beyond that fraction of `jump_scale` (its crack's largest jump) when
+/// one of the two is open, a trial tangential traction beyond that
+/// fraction of the Coulomb limit otherwise.
+fn breaks_law(
+    kept: ContactState,
+    new: &FaceState,
+    crack: &Crack,
+    committed_slip: f64,
+    gt: f64,
+    jump_scale: f64,
+) -> bool {
+    match (kept, new.state) {
+        (a, b) if a == b => false,
+        (ContactState::Open, _) | (_, ContactState::Open) => {
+            new.g_n.abs() > FROZEN_TOLERANCE * jump_scale
+        }
+        _ => {
+            let limit = coulomb_limit(crack, new.p_n);
+            let trial = crack.kt * (gt - committed_slip);
+            (trial.abs() - limit).abs() > FROZEN_TOLERANCE * limit.max(trial.abs())
+        }
+    }
+}
+
+/// The state of a frozen point: its kind is kept, its tractions follow the
+/// gaps.
+fn forced(kind: ContactState, crack: &Crack, slip: f64, gn: f64, gt: f64) -> FaceState {
+    let free = update_point(crack, slip, gn, gt);
+    match kind {
+        ContactState::Open => FaceState {
+            state: ContactState::Open,
+            p_n: 0.0,
+            p_t: 0.0,
+            ..free
+        },
+        ContactState::Stick => FaceState {
+            state: ContactState::Stick,
+            slip,
+            g_n: gn,
+            g_t: gt,
+            p_n: crack.kn * gn,
+            p_t: crack.kt * (gt - slip),
+        },
+        ContactState::Slip => {
+            let p_n = crack.kn * gn.min(0.0);
+            let trial = crack.kt * (gt - slip);
+            let p_t = coulomb_limit(crack, p_n) * trial.signum();
+            FaceState {
+                state: ContactState::Slip,
+                slip: gt - p_t / crack.kt,
+                g_n: gn,
+                g_t: gt,
+                p_n,
+                p_t,
+            }
+        }
+    }
 }

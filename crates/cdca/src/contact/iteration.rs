@@ -5,15 +5,14 @@
 //! (Tresca) problem and updated in an outer loop; cycling points are
 //! damped by a line search and counted, so the loop always ends with an
 //! explicit status. Resumable ([`ContactSolve`]); the blocking calls loop
-//! over it. The in-sweep rule's helpers (freezing, the law's tolerance)
-//! live here too.
-
-use nalgebra::{DMatrix, DVector};
+//! over it. Its cycling guard ([`FlipTracker`]) and state bookkeeping
+//! ([`Reached`]) serve the in-sweep rule too.
 
 use crate::contact::law::{
-    ContactState, FaceState, contact_system_split, coulomb_limit, friction_limit, gaps,
-    stick_or_slip, update_point,
+    ContactState, FaceState, contact_system_split, friction_limit, gaps, stick_or_slip,
+    update_point,
 };
+use crate::contact::limit_mix::LimitMix;
 use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::dofs::FIXED;
 use crate::discretisation::xfem::Xfem;
@@ -116,9 +115,9 @@ pub struct ContactInfo {
 ///   again). The inner problem is solved when no state changes: its
 ///   system is then exact;
 /// - the outer loop then sets `τ_y ← μ|p_N| + c_c` from that solution
-///   (zero where open), Anderson-mixed over the last [`ANDERSON_DEPTH`]
-///   limit vectors (restarted from the plain step when the mix would take
-///   a limit that step raises below zero), until the Coulomb return
+///   (zero where open), Anderson-mixed over the last few limit vectors
+///   ([`LimitMix::next`]: restarted from the plain step when the mix would
+///   take a limit that step raises below zero), until the Coulomb return
 ///   mapping at the solution gives
 ///   the same states and the limits or the solution settle
 ///   (`‖Δτ‖ ≤ tolerance ‖τ‖` or `‖Δu‖ ≤ tolerance ‖u‖` between inner
@@ -149,15 +148,10 @@ pub struct ContactSolve {
     /// built).
     limits: Option<Vec<f64>>,
     /// Anderson mix of the limits' fixed-point map `τ ↦ μ|p_N(g(τ))| + c_c`.
-    limit_mix: Anderson,
+    limit_mix: LimitMix,
     /// The solution of the last inner problem (for the outer change).
     inner_solution: Option<Vec<f64>>,
 }
-
-/// Pairs kept for the Anderson mix of the friction limits (measured on the
-/// issue-17 growth harness: without the mix 29% more linear solves, and
-/// the default scene at μ = 0.6 stopped `not_converged`).
-pub const ANDERSON_DEPTH: usize = 5;
 
 /// A line-search step below this fraction is taken whole (the same
 /// states would give the same step again: a stall).
@@ -179,44 +173,9 @@ fn signature(states: &[FaceState]) -> Vec<(ContactState, bool, bool)> {
         .collect()
 }
 
-/// Anderson mixing of a fixed-point map `τ ↦ G(τ)` (here the friction
-/// limits the inner problem's solution gives).
-#[derive(Default)]
-struct Anderson {
-    /// `(τ, G(τ))`, oldest first.
-    pairs: Vec<(Vec<f64>, Vec<f64>)>,
-}
-
-impl Anderson {
-    /// Adds `(τ, G(τ))`; returns the mixed iterate once there are two
-    /// pairs: `G − Σ γ_j ΔG_j` with `γ` minimising
-    /// `‖(G − τ) − Σ γ_j Δ(G − τ)_j‖`.
-    fn push(&mut self, tau: &[f64], g: &[f64]) -> Option<Vec<f64>> {
-        self.pairs.push((tau.to_vec(), g.to_vec()));
-        if self.pairs.len() > ANDERSON_DEPTH + 1 {
-            self.pairs.remove(0);
-        }
-        let k = self.pairs.len();
-        if k < 2 {
-            return None;
-        }
-        let f = |j: usize, i: usize| self.pairs[j].1[i] - self.pairs[j].0[i];
-        let df = DMatrix::from_fn(g.len(), k - 1, |i, j| f(j + 1, i) - f(j, i));
-        let fk = DVector::from_fn(g.len(), |i, _| f(k - 1, i));
-        let svd = df.svd(true, true);
-        let largest = svd.singular_values.max();
-        if largest <= 0.0 {
-            return None;
-        }
-        let gamma = svd.solve(&fk, 1e-12 * largest).ok()?;
-        let mut mixed = g.to_vec();
-        for (j, w) in self.pairs.windows(2).enumerate() {
-            for (v, (a, b)) in mixed.iter_mut().zip(w[1].1.iter().zip(&w[0].1)) {
-                *v -= gamma[j] * (a - b);
-            }
-        }
-        mixed.iter().all(|v| v.is_finite()).then_some(mixed)
-    }
+/// Points whose [`signature`] entries differ.
+fn differ(a: &[(ContactState, bool, bool)], b: &[(ContactState, bool, bool)]) -> usize {
+    a.iter().zip(b).filter(|(p, q)| p != q).count()
 }
 
 /// Where a contact iteration stands, the outer loop's ([`ContactSolve`])
@@ -286,7 +245,7 @@ impl ContactSolve {
             done_seconds: 0.0,
             bulk_residual: None,
             limits: None,
-            limit_mix: Anderson::default(),
+            limit_mix: LimitMix::default(),
             inner_solution: None,
         }
     }
@@ -322,36 +281,15 @@ impl ContactSolve {
             return Ok(self.status(true));
         }
         let Some(system) = &mut self.system else {
-            if self.limits.is_none() {
-                self.limits = Some(initial_limits(x, &self.reached.states));
-            }
-            let mut f = self.load.clone();
-            let blocks =
-                contact_system_split(x, &self.reached.states, committed, |s| s.g_n < 0.0, &mut f);
-            let kinds = matrix_kinds(&self.reached.states);
-            let matrix_changed = kinds.is_none() || *factored != kinds;
-            // unknown until the setup below has succeeded
-            *factored = None;
-            self.before.clone_from(u);
-            solver.start(x, &blocks, &f, u, matrix_changed)?;
-            *factored = kinds;
-            for (a, b) in f.iter_mut().zip(&self.load) {
-                *a -= b;
-            }
-            self.system = Some(System {
-                blocks,
-                force: f,
-                copied: 0,
-                signature: signature(&self.reached.states),
-            });
+            self.set_up(x, committed, factored, u, solver)?;
             return self.advance(x, committed, factored, u, solver, max_iterations);
         };
         let status = solver.run(x, &system.blocks, max_iterations.max(1))?;
         u.clear();
         u.extend_from_slice(solver.u());
-        let samples = solver.samples();
         // later contact iterations do not repeat the iteration-0 sample
         let later = self.done_iterations > 0;
+        let samples = solver.samples();
         self.reached.history.extend(
             samples[system.copied.min(samples.len())..]
                 .iter()
@@ -378,13 +316,65 @@ impl ContactSolve {
         self.reached.info.linear_iterations += lin.iterations;
         let linear_converged = lin.converged;
         self.reached.info.last = lin;
+        match self.system.take() {
+            Some(system) => self.end_contact_iteration(x, committed, u, &system, linear_converged),
+            None => Ok(self.status(self.reached.finished)),
+        }
+    }
+
+    /// Assembles the contact system of the current states (and the
+    /// friction limits, at the first one) and sets the linear solve up,
+    /// refactorising only when the matrix changed (see [`Self::advance`]).
+    fn set_up(
+        &mut self,
+        x: &Xfem,
+        committed: &[FaceState],
+        factored: &mut Option<Vec<ContactState>>,
+        u: &[f64],
+        solver: &mut dyn LinearSolver,
+    ) -> Result<(), SolveError> {
+        if self.limits.is_none() {
+            self.limits = Some(initial_limits(x, &self.reached.states));
+        }
+        let mut f = self.load.clone();
+        let blocks =
+            contact_system_split(x, &self.reached.states, committed, |s| s.g_n < 0.0, &mut f);
+        let kinds = matrix_kinds(&self.reached.states);
+        let matrix_changed = kinds.is_none() || *factored != kinds;
+        // unknown until the setup below has succeeded
+        *factored = None;
+        self.before.clear();
+        self.before.extend_from_slice(u);
+        solver.start(x, &blocks, &f, u, matrix_changed)?;
+        *factored = kinds;
+        for (a, b) in f.iter_mut().zip(&self.load) {
+            *a -= b;
+        }
+        self.system = Some(System {
+            blocks,
+            force: f,
+            copied: 0,
+            signature: signature(&self.reached.states),
+        });
+        Ok(())
+    }
+
+    /// A contact iteration's linear solve `g` (in `u`) has ended: maps the
+    /// states by the inner law; if none changed, takes the outer step
+    /// ([`Self::outer_step`]), else damps the step from the last iterate
+    /// ([`Self::damped_step`]); then says whether the iteration has ended
+    /// and how.
+    fn end_contact_iteration(
+        &mut self,
+        x: &Xfem,
+        committed: &[FaceState],
+        u: &mut Vec<f64>,
+        system: &System,
+        linear_converged: bool,
+    ) -> Result<RelaxStatus, SolveError> {
         let it = self.reached.info.iterations + 1;
-        let Some(system) = self.system.take() else {
-            return Ok(self.status(self.reached.finished));
-        };
         // the tests are taken on g = u, the solution of the system
-        let solved = bulk_residual(x, &system, u);
-        let change = relative_change(u, &self.before);
+        let solved = bulk_residual(x, system, u);
         let limits = self.limits.clone().unwrap_or_default();
         let more = linear_converged && it < self.params.max_contact_iterations();
         let mut states = self.reached.states.clone();
@@ -397,100 +387,19 @@ impl ContactSolve {
             &mut self.reached.tracker,
             self.params.max_flips,
         );
-        let mut residual = change;
-        let mut settled = false;
-        let differ = |a: &[(ContactState, bool, bool)], b: &[(ContactState, bool, bool)]| {
-            a.iter().zip(b).filter(|(p, q)| p != q).count()
-        };
         let sig = signature(&states);
-        let mut unsettled = if changed > 0 {
+        let unsettled = if changed > 0 {
             changed
         } else {
             differ(&sig, &system.signature)
         };
-        if unsettled == 0 {
-            // g solves the inner (Tresca) problem of these limits exactly
-            let target = coulomb_limits(x, u);
-            let outer = self.inner_solution.as_ref().map(|p| relative_change(u, p));
-            // the friction forces one more Coulomb solve would change
-            let slipping = |l: &[f64]| -> Vec<f64> {
-                l.iter()
-                    .zip(&states)
-                    .map(|(v, s)| {
-                        if s.state == ContactState::Slip {
-                            *v
-                        } else {
-                            0.0
-                        }
-                    })
-                    .collect()
-            };
-            let limit_change = relative_change(&slipping(&target), &slipping(&limits));
-            residual = outer.map_or(limit_change, |c| c.min(limit_change));
-            let coulomb = coulomb_states(x, u, committed);
-            unsettled = differ(&signature(&coulomb), &sig);
-            if unsettled == 0 && residual <= self.params.tolerance {
-                settled = true;
-                states = coulomb;
-            } else if more {
-                self.inner_solution = Some(u.clone());
-                // limits are not negative. A mixed step that would take a
-                // limit the plain step raises below zero extrapolates past
-                // what the history supports (a point whose friction presses
-                // it shut, as at a kink in a crack, has G(τ) − τ about
-                // constant): cut back to zero it kept that point slipping
-                // free, forever. The mixing then restarts from the plain
-                // step.
-                let next = match self.limit_mix.push(&limits, &target) {
-                    Some(m) if m.iter().zip(&target).all(|(v, t)| *v >= 0.0 || *t <= 0.0) => {
-                        m.into_iter().map(|v| v.max(0.0)).collect()
-                    }
-                    Some(_) => {
-                        self.limit_mix = Anderson::default();
-                        target
-                    }
-                    None => target,
-                };
-                states.clone_from(&self.reached.states);
-                update_limited(
-                    x,
-                    u,
-                    committed,
-                    &mut states,
-                    &next,
-                    &mut self.reached.tracker,
-                    self.params.max_flips,
-                );
-                self.limits = Some(next);
-            }
-            self.bulk_residual = Some(solved);
+        let (residual, unsettled, settled) = if unsettled == 0 {
+            self.outer_step(x, committed, u, &mut states, &limits, more, solved)
         } else {
-            let step = self.bulk_residual.as_ref().filter(|_| more).and_then(|r0| {
-                let beta = line_search(x, committed, &limits, &self.before, u, r0, &solved);
-                (STALLED_STEP..1.0).contains(&beta).then(|| {
-                    let step = |a: &[f64], b: &[f64]| -> Vec<f64> {
-                        a.iter().zip(b).map(|(p, q)| p + beta * (q - p)).collect()
-                    };
-                    (step(&self.before, u), step(r0, &solved))
-                })
-            });
-            if let Some((v, r)) = step {
-                *u = v;
-                self.bulk_residual = Some(r);
-                states.clone_from(&self.reached.states);
-                update_limited(
-                    x,
-                    u,
-                    committed,
-                    &mut states,
-                    &limits,
-                    &mut FlipTracker::new(committed.len()),
-                    self.params.max_flips,
-                );
-            } else {
-                self.bulk_residual = Some(solved);
-            }
-        }
+            let change = relative_change(u, &self.before);
+            self.damped_step(x, committed, u, &mut states, &limits, more, solved);
+            (change, unsettled, false)
+        };
         self.reached.states = states;
         self.reached.info.iterations = it;
         self.reached.info.residual = residual;
@@ -513,6 +422,107 @@ impl ContactSolve {
             self.reached.finished = true;
         }
         Ok(self.status(self.reached.finished))
+    }
+
+    /// No state changed: `g` (in `u`) solves the inner (Tresca) problem of
+    /// the `limits` exactly. Converged (`states` become the Coulomb states)
+    /// when the Coulomb return mapping at `g` gives the same states and the
+    /// limits or the inner solutions settled; otherwise, with iterations
+    /// left (`more`), the limits move on ([`LimitMix::next`]) and `states`
+    /// are those of the new limits. Returns the outer change, the points
+    /// not in their Coulomb state, and whether it converged.
+    #[allow(clippy::too_many_arguments)]
+    fn outer_step(
+        &mut self,
+        x: &Xfem,
+        committed: &[FaceState],
+        u: &[f64],
+        states: &mut Vec<FaceState>,
+        limits: &[f64],
+        more: bool,
+        solved: Vec<f64>,
+    ) -> (f64, usize, bool) {
+        let target = coulomb_limits(x, u);
+        let outer = self.inner_solution.as_ref().map(|p| relative_change(u, p));
+        // the friction forces one more Coulomb solve would change
+        let slipping = |l: &[f64]| -> Vec<f64> {
+            l.iter()
+                .zip(states.iter())
+                .map(|(v, s)| {
+                    if s.state == ContactState::Slip {
+                        *v
+                    } else {
+                        0.0
+                    }
+                })
+                .collect()
+        };
+        let limit_change = relative_change(&slipping(&target), &slipping(limits));
+        let residual = outer.map_or(limit_change, |c| c.min(limit_change));
+        let coulomb = coulomb_states(x, u, committed);
+        let unsettled = differ(&signature(&coulomb), &signature(states));
+        let settled = unsettled == 0 && residual <= self.params.tolerance;
+        if settled {
+            *states = coulomb;
+        } else if more {
+            self.inner_solution = Some(u.to_vec());
+            let next = self.limit_mix.next(limits, target);
+            states.clone_from(&self.reached.states);
+            update_limited(
+                x,
+                u,
+                committed,
+                states,
+                &next,
+                &mut self.reached.tracker,
+                self.params.max_flips,
+            );
+            self.limits = Some(next);
+        }
+        self.bulk_residual = Some(solved);
+        (residual, unsettled, settled)
+    }
+
+    /// Some state changed: with iterations left (`more`), the step from the
+    /// last iterate to `g` (in `u`) is cut at the line search's `β` when
+    /// that lies in [[`STALLED_STEP`], 1), and `states` are mapped again
+    /// at the damped iterate.
+    #[allow(clippy::too_many_arguments)]
+    fn damped_step(
+        &mut self,
+        x: &Xfem,
+        committed: &[FaceState],
+        u: &mut Vec<f64>,
+        states: &mut [FaceState],
+        limits: &[f64],
+        more: bool,
+        solved: Vec<f64>,
+    ) {
+        let step = self.bulk_residual.as_ref().filter(|_| more).and_then(|r0| {
+            let beta = line_search(x, committed, limits, &self.before, u, r0, &solved);
+            (STALLED_STEP..1.0).contains(&beta).then(|| {
+                let step = |a: &[f64], b: &[f64]| -> Vec<f64> {
+                    a.iter().zip(b).map(|(p, q)| p + beta * (q - p)).collect()
+                };
+                (step(&self.before, u), step(r0, &solved))
+            })
+        });
+        if let Some((v, r)) = step {
+            *u = v;
+            self.bulk_residual = Some(r);
+            states.clone_from_slice(&self.reached.states);
+            update_limited(
+                x,
+                u,
+                committed,
+                states,
+                limits,
+                &mut FlipTracker::new(committed.len()),
+                self.params.max_flips,
+            );
+        } else {
+            self.bulk_residual = Some(solved);
+        }
     }
 
     fn status(&self, finished: bool) -> RelaxStatus {
@@ -705,12 +715,6 @@ impl FlipTracker {
     }
 }
 
-/// Relative size of a frozen point's departure from the contact law below
-/// which it still counts as obeying it: a normal gap of this fraction of
-/// the crack's largest jump, or a tangential traction within this fraction
-/// of the Coulomb limit.
-pub const FROZEN_TOLERANCE: f64 = 1e-2;
-
 /// The Coulomb states (the return mapping, [`update_point`]) of every face
 /// point at `u`.
 fn coulomb_states(x: &Xfem, u: &[f64], committed: &[FaceState]) -> Vec<FaceState> {
@@ -819,33 +823,6 @@ fn update_limited(
     changed
 }
 
-/// Whether a frozen point whose kept state is `kept` breaks the contact
-/// law by more than [`FROZEN_TOLERANCE`], given the return mapping's state
-/// `new` at its gaps (`g_T` = `gt`, the normal gap in `new`): a normal gap
-/// beyond that fraction of `jump_scale` (its crack's largest jump) when
-/// one of the two is open, a trial tangential traction beyond that
-/// fraction of the Coulomb limit otherwise.
-pub fn breaks_law(
-    kept: ContactState,
-    new: &FaceState,
-    crack: &Crack,
-    committed_slip: f64,
-    gt: f64,
-    jump_scale: f64,
-) -> bool {
-    match (kept, new.state) {
-        (a, b) if a == b => false,
-        (ContactState::Open, _) | (_, ContactState::Open) => {
-            new.g_n.abs() > FROZEN_TOLERANCE * jump_scale
-        }
-        _ => {
-            let limit = coulomb_limit(crack, new.p_n);
-            let trial = crack.kt * (gt - committed_slip);
-            (trial.abs() - limit).abs() > FROZEN_TOLERANCE * limit.max(trial.abs())
-        }
-    }
-}
-
 /// Slivers at tips take their neighbour's state and traction, with their
 /// own gaps from `u`.
 pub fn update_followers(x: &Xfem, u: &[f64], states: &mut [FaceState]) {
@@ -872,39 +849,4 @@ pub fn relative_change(a: &[f64], b: &[f64]) -> f64 {
         .sqrt();
     let n: f64 = a.iter().map(|x| x * x).sum::<f64>().sqrt();
     if n > 0.0 { d / n } else { d }
-}
-
-/// The state of a frozen point: its kind is kept, its tractions follow the
-/// gaps.
-pub fn forced(kind: ContactState, crack: &Crack, slip: f64, gn: f64, gt: f64) -> FaceState {
-    let free = update_point(crack, slip, gn, gt);
-    match kind {
-        ContactState::Open => FaceState {
-            state: ContactState::Open,
-            p_n: 0.0,
-            p_t: 0.0,
-            ..free
-        },
-        ContactState::Stick => FaceState {
-            state: ContactState::Stick,
-            slip,
-            g_n: gn,
-            g_t: gt,
-            p_n: crack.kn * gn,
-            p_t: crack.kt * (gt - slip),
-        },
-        ContactState::Slip => {
-            let p_n = crack.kn * gn.min(0.0);
-            let trial = crack.kt * (gt - slip);
-            let p_t = coulomb_limit(crack, p_n) * trial.signum();
-            FaceState {
-                state: ContactState::Slip,
-                slip: gt - p_t / crack.kt,
-                g_n: gn,
-                g_t: gt,
-                p_n,
-                p_t,
-            }
-        }
-    }
 }

@@ -12,5 +12,6 @@
 pub mod in_sweep;
 pub mod iteration;
 pub mod law;
+pub mod limit_mix;
 
 pub use law::{ContactState, FaceState};

@@ -341,10 +341,25 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
                 ui.spinner();
                 ui.label(format!("Growing ({})…", solver_name(v.run.growth_solver)));
             });
-            ui.add(
-                ProgressBar::new(view.load_factor as f32)
-                    .text(format!("load factor λ = {:.3}", view.load_factor)),
-            );
+            // under load control λ is the share of the ramp done; under
+            // critical control λ_cr can be any value, and only the steps
+            // have a bound
+            let g = &v.scene.growth;
+            let (done, text) = match g.control {
+                GrowthControl::Load => (
+                    view.load_factor,
+                    format!("load factor λ = {:.3} of 1", view.load_factor),
+                ),
+                GrowthControl::Critical => (
+                    view.history.len() as f64 / g.max_steps.max(1) as f64,
+                    format!(
+                        "{} of at most {} steps (growth.max_steps)",
+                        view.history.len(),
+                        g.max_steps
+                    ),
+                ),
+            };
+            ui.add(ProgressBar::new(done.clamp(0.0, 1.0) as f32).text(text));
             ui.label(growth_progress(view));
         }
     }

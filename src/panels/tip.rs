@@ -10,6 +10,7 @@ use egui::{Color32, Grid, Ui};
 use egui_plot::{Legend, Line, LineStyle, Plot, PlotPoints};
 
 use crate::command::Command;
+use crate::run::RunMode;
 use crate::units;
 use crate::view::AppView;
 
@@ -24,6 +25,8 @@ pub fn tip_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         let sol = &v.solution;
         ui.weak(if sol.split {
             "No free tip: the final cracks cut the specimen through."
+        } else if v.run.mode != RunMode::Paused {
+            "A run is in progress: the tips show when it ends."
         } else if !sol.solved {
             "Solve, then click a tip on the canvas."
         } else if v.scene.cracks.is_empty() {

@@ -32,9 +32,17 @@ impl Scene {
                         .get_mut(k)
                         .ok_or_else(|| bad(&format!("index {k} out of range (0..{len})")))?
                 }
-                Value::Object(map) => map
-                    .get_mut(*seg)
-                    .ok_or_else(|| bad(&format!("no field `{seg}` here")))?,
+                Value::Object(map) => {
+                    // a tagged variant (a side's `kind`) says which it is
+                    let why = match map.get("kind").and_then(Value::as_str) {
+                        Some(kind) => format!(
+                            "no field `{seg}` here: `{}` is of kind `{kind}`",
+                            segments[..i].join(".")
+                        ),
+                        None => format!("no field `{seg}` here"),
+                    };
+                    map.get_mut(*seg).ok_or_else(|| bad(&why))?
+                }
                 _ => return Err(bad(&format!("`{seg}` is inside a number"))),
             };
             if last && !(node.is_number() || node.is_null()) {
@@ -99,5 +107,18 @@ mod tests {
                 "{path}: {e}"
             );
         }
+    }
+
+    /// A field of another variant names the variant the scene has.
+    #[test]
+    fn a_field_of_another_kind_of_side_names_the_kind() {
+        let e = base()
+            .with_param("boundary.bottom.normal", -1e6)
+            .expect_err("a roller has no traction");
+        assert!(
+            e.to_string()
+                .contains("no field `normal` here: `boundary.bottom` is of kind `roller`"),
+            "{e}"
+        );
     }
 }

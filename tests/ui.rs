@@ -1638,3 +1638,37 @@ fn a_load_ramp_below_the_criterion_says_no_tip_grew() {
     h.run_steps(60);
     h.get_by_label("All 3 load steps applied (growth.load_steps).");
 }
+
+/// The Study tab offers only the parameters the scene has: on the default
+/// scene (right side free) no lateral traction, but the flaw's friction
+/// and the top traction; after the right side becomes a traction side, its
+/// normal too.
+#[test]
+fn the_study_tab_offers_only_the_scenes_own_parameters() {
+    let mut h = harness(no_solver());
+    h.run();
+    h.get_by_label("Study").click();
+    h.run();
+    let open_choices = |h: &mut Harness<'_, WorkbenchApp>| {
+        h.get_all_by_label("Parameter")
+            .next()
+            .expect("the parameter choice")
+            .click();
+        h.run();
+    };
+    open_choices(&mut h);
+    assert!(h.query_by_label("boundary.top.normal").is_some());
+    assert!(h.query_by_label("cracks.0.cohesion").is_some());
+    assert!(h.query_by_label("boundary.right.normal").is_none());
+    h.key_press(egui::Key::Escape);
+    h.run();
+    edit_scene(&mut h, |s| {
+        s.boundary.right = cdca::scene::SideBc::Traction {
+            normal: -20e6,
+            shear: 0.0,
+        };
+    });
+    h.run();
+    open_choices(&mut h);
+    assert!(h.query_by_label("boundary.right.normal").is_some());
+}

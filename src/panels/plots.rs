@@ -58,7 +58,7 @@ pub fn plots_ui(
     let figs = figures(tab, v.solution, v.race, v.study, specimen);
     match tab {
         PlotTab::SolverComparison => race_ui(ui, v.race, &figs, cmds),
-        PlotTab::Study => study_ui(ui, v.study, study_setup, &figs, cmds),
+        PlotTab::Study => study_ui(ui, v.scene, v.study, study_setup, &figs, cmds),
         _ => match figs.first() {
             Some(fig) => figure_ui(ui, tab, 0, fig, cmds),
             None => {
@@ -235,6 +235,7 @@ fn swatch(ui: &mut Ui, colour: Color32, style: Option<Style>) {
 /// measured values in a table beside them.
 fn study_ui(
     ui: &mut Ui,
+    scene: &cdca::scene::SceneFile,
     study: Option<&Study>,
     setup: &mut StudySetup,
     figs: &[Figure],
@@ -246,7 +247,8 @@ fn study_ui(
         egui::ComboBox::from_id_salt("study path")
             .selected_text(setup.path.clone())
             .show_ui(ui, |ui| {
-                for p in SUGGESTED_PATHS {
+                // only the fields this scene has (no traction on a free side)
+                for p in scene.params(&SUGGESTED_PATHS) {
                     ui.selectable_value(&mut setup.path, p.to_owned(), p);
                 }
             })

@@ -56,6 +56,26 @@ impl Scene {
     }
 }
 
+impl SceneFile {
+    /// The paths among `paths` that name a number field of this scene (an
+    /// unset optional one included), the fields [`Scene::with_param`] can
+    /// set: `boundary.right.normal` only where the right side is a
+    /// traction side, `cracks.0.friction` only with a crack.
+    pub fn params<'a>(&self, paths: &[&'a str]) -> Vec<&'a str> {
+        let Ok(root) = serde_json::to_value(self) else {
+            return Vec::new();
+        };
+        paths
+            .iter()
+            .copied()
+            .filter(|p| {
+                root.pointer(&format!("/{}", p.replace('.', "/")))
+                    .is_some_and(|n| n.is_number() || n.is_null())
+            })
+            .collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -107,6 +127,33 @@ mod tests {
                 "{path}: {e}"
             );
         }
+    }
+
+    /// The fields a scene has: a free side has no traction, a scene
+    /// without cracks no crack friction, and an unset optional number counts.
+    #[test]
+    fn a_scene_offers_only_its_own_number_fields() {
+        let mut file = base().into_file();
+        let paths = [
+            "cracks.0.friction",
+            "cracks.0.cohesion",
+            "boundary.right.normal",
+            "boundary.bottom.normal",
+            "criterion.r0",
+            "material",
+        ];
+        assert_eq!(
+            file.params(&paths),
+            [
+                "cracks.0.friction",
+                "cracks.0.cohesion",
+                "boundary.right.normal",
+                "criterion.r0"
+            ]
+        );
+        file.cracks.clear();
+        file.boundary.right = crate::scene::SideBc::Free;
+        assert_eq!(file.params(&paths), ["criterion.r0"]);
     }
 
     /// A field of another variant names the variant the scene has.

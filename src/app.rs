@@ -372,24 +372,26 @@ impl WorkbenchApp {
     /// The frame's tasks within [`FRAME_BUDGET`], in order: the field the
     /// canvas shows (the other tasks wait until it is complete, so what is
     /// shown is consistent and stays shown while they run), then the task
-    /// in progress: the solver race, a study or the runner's run (at most
-    /// one runs: starting the race or a study pauses the runner); after
+    /// in progress: a direct solve (it ends within a few frames), else the
+    /// solver race, a study or the runner's run (at most one runs: starting
+    /// the race or a study pauses the runner's other runs); after
     /// that, a growth step's field at λ_cr at once, before its tips move on.
     fn run_tasks(&mut self) {
         let start = Instant::now();
         let deadline = start + FRAME_BUDGET;
         let key = self.field_key();
         if self.runner.sample_field(key, deadline) == Progress::Finished {
-            let task: Option<&mut dyn Task> =
-                if let Some(race) = self.race.as_mut().filter(|r| !r.finished()) {
-                    Some(race)
-                } else if let Some(study) = self.study.as_mut().filter(|s| !s.finished()) {
-                    Some(study)
-                } else if self.runner.is_running() {
-                    Some(&mut self.runner)
-                } else {
-                    None
-                };
+            let task: Option<&mut dyn Task> = if self.runner.is_direct_solving() {
+                Some(&mut self.runner)
+            } else if let Some(race) = self.race.as_mut().filter(|r| !r.finished()) {
+                Some(race)
+            } else if let Some(study) = self.study.as_mut().filter(|s| !s.finished()) {
+                Some(study)
+            } else if self.runner.is_running() {
+                Some(&mut self.runner)
+            } else {
+                None
+            };
             if let Some(Err(e)) = task.map(|t| t.advance(deadline)) {
                 self.message = Some(Message::Error(e));
             }

@@ -58,8 +58,7 @@ impl WorkbenchApp {
             }
             Command::Solve => {
                 if self.ensure_simulation() {
-                    let r = self.runner.solve();
-                    self.show_error(r);
+                    self.runner.solve();
                 }
             }
             Command::Step => {
@@ -83,7 +82,7 @@ impl WorkbenchApp {
             Command::SetPace(pace) => self.runner.set_pace(pace),
             Command::SetAccelerateGrowth(on) => self.runner.set_accelerate_growth(on),
             Command::RunStudy(setup) => {
-                self.runner.pause();
+                self.runner.pause_unless_solving();
                 let accelerate = self.runner.accelerate_growth();
                 let study = self
                     .runner
@@ -108,7 +107,7 @@ impl WorkbenchApp {
                 self.auto_solve();
             }
             Command::CompareSolvers { time_cap } => {
-                self.runner.pause();
+                self.runner.pause_unless_solving();
                 // the race's reference is the direct solution
                 let checked = self.runner.checked().and_then(|s| {
                     let mut file = cdca::scene::SceneFile::clone(s);
@@ -196,8 +195,7 @@ impl WorkbenchApp {
                 self.rebuild();
             }
             if self.runner.simulation().is_some() {
-                let r = self.runner.solve();
-                self.show_error(r);
+                self.runner.solve();
             }
         }
     }

@@ -61,8 +61,11 @@ pub struct Runner {
     field: FieldSampler,
     /// The edited scene differs from the simulated one.
     stale: bool,
-    /// Wall time of the last full solve, s.
+    /// Wall time of the last full solve, s (for a direct solve run in
+    /// slices, the time of its slices).
     last_solve_seconds: Option<f64>,
+    /// The direct solve in progress: the time its slices took so far, s.
+    direct_solve: Option<f64>,
     /// Elements of the mesh of that solve.
     last_solve_elements: usize,
     /// Wall time of the last `Simulation::new`, s.
@@ -93,6 +96,7 @@ impl Default for Runner {
             field: FieldSampler::default(),
             stale: false,
             last_solve_seconds: None,
+            direct_solve: None,
             last_solve_elements: 0,
             last_build_seconds: 0.0,
             accelerate_growth: true,
@@ -238,6 +242,7 @@ impl Runner {
     pub fn invalidate(&mut self, scene: &SceneFile) -> Result<(), String> {
         self.sim = None;
         self.run = None;
+        self.direct_solve = None;
         self.relaxation_started = false;
         self.growth_ready = false;
         self.view.clear();
@@ -273,37 +278,24 @@ impl Runner {
         Ok(())
     }
 
-    /// Solves now: the direct solver in one call, iterative ones animated.
-    pub fn solve(&mut self) -> Result<(), String> {
-        if self.solver_kind() != SolverKind::Direct {
-            self.relaxation_started = false;
-            self.relax();
-            return Ok(());
+    /// Solves now, in slices across frames: the direct solver one contact
+    /// iteration (one factorisation) at a time at most, the iterative ones
+    /// animated.
+    pub fn solve(&mut self) {
+        // the direct solve too runs as a relaxation, one contact iteration
+        // (one factorisation) per slice at most, so that no frame holds a
+        // whole solve (in a browser 0.2 s at 60 × 60)
+        if self.solver_kind() == SolverKind::Direct && self.sim.is_some() {
+            self.direct_solve = Some(0.0);
         }
-        let Some(sim) = self.sim.as_mut() else {
-            return Ok(());
-        };
-        self.run = None;
-        let start = Instant::now();
-        let result = sim.solve();
-        self.last_solve_seconds = Some(start.elapsed().as_secs_f64());
-        let mesh = &sim.scene().mesh;
-        self.last_solve_elements = mesh.nx * mesh.ny;
-        // the status of the solve, as a relaxation's would be: a capped
-        // contact iteration is shown as not converged, not as solved
-        let status = result.as_ref().ok().map(|r| cdca::RelaxStatus {
-            iterations: r.contact.iterations.max(1),
-            residual: r.solver.residual,
-            converged: r.converged(),
-            finished: true,
-        });
-        self.refresh(true, status);
-        result.map(|_| ()).map_err(|e| e.to_string())
+        self.relaxation_started = false;
+        self.relax();
     }
 
     /// One sweep of the current relaxation (starting one if needed).
     pub fn step(&mut self) -> Result<(), String> {
         self.run = None;
+        self.direct_solve = None;
         self.start_relaxation();
         let Some(sim) = self.sim.as_mut() else {
             return Ok(());
@@ -358,6 +350,7 @@ impl Runner {
             }
         }
         self.growth_ready = true;
+        self.direct_solve = None;
         let steps = self.sim.as_ref().map_or(0, |s| s.history().len());
         self.run = Some(Run::grow(one.then_some(steps)));
         Ok(())
@@ -366,6 +359,20 @@ impl Runner {
     /// Stops the run in progress where it is (it can go on later).
     pub fn pause(&mut self) {
         self.run = None;
+    }
+
+    /// Stops the run in progress unless it is a direct solve, which ends
+    /// within a few frames and is what the scene shows (the race and a
+    /// study start after it).
+    pub fn pause_unless_solving(&mut self) {
+        if !self.is_direct_solving() {
+            self.pause();
+        }
+    }
+
+    /// A direct solve is in progress ([`solve`](Self::solve)).
+    pub fn is_direct_solving(&self) -> bool {
+        self.run.is_some() && self.direct_solve.is_some()
     }
 
     /// Sweeps per frame while relaxing or growing (None: as many as the
@@ -438,8 +445,13 @@ impl Task for Runner {
             self.run = None;
             return Ok(Progress::Finished);
         };
+        let start = Instant::now();
         let result = run.advance(sim, &mut self.pacer, deadline);
+        if let Some(t) = self.direct_solve.as_mut() {
+            *t += start.elapsed().as_secs_f64();
+        }
         let final_solve = run.in_final_solve();
+        let elements = sim.scene().mesh.nx * sim.scene().mesh.ny;
         if matches!(run, Run::Grow(_)) {
             // a later Relax starts its own relaxation
             self.relaxation_started = false;
@@ -452,6 +464,10 @@ impl Task for Runner {
                 self.refresh(solved, slice.status);
                 if slice.progress == Progress::Finished {
                     self.run = None;
+                    if let Some(t) = self.direct_solve.take() {
+                        self.last_solve_seconds = Some(t);
+                        self.last_solve_elements = elements;
+                    }
                 }
                 Ok(slice.progress)
             }

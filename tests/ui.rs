@@ -1586,7 +1586,9 @@ fn a_step_that_stepped_around_an_unsolved_trial_says_so() {
             ),
         ];
     });
-    h.run_steps(3);
+    // the edit's solve runs in slices: Run growth waits for it
+    h.run_steps(1);
+    run_until_paused(&mut h, 2000);
     h.get_by_label("Run growth").click();
     h.run_steps(2);
     run_until_paused(&mut h, 20_000);

@@ -379,6 +379,14 @@ impl WorkbenchApp {
     fn run_tasks(&mut self) {
         let start = Instant::now();
         let deadline = start + FRAME_BUDGET;
+        // a frame whose commands already took the budget (a rebuild of the
+        // simulation) leaves the tasks to the next one: a rebuild and the
+        // first contact iteration's factorisation then hold two frames,
+        // not one for both
+        if self.frame_start.is_some_and(|f| start - f >= FRAME_BUDGET) {
+            self.frame_solver_seconds = 0.0;
+            return;
+        }
         let key = self.field_key();
         if self.runner.sample_field(key, deadline) == Progress::Finished {
             let task: Option<&mut dyn Task> = if self.runner.is_direct_solving() {

@@ -17,8 +17,11 @@ use crate::solvers::relaxation::{RelaxStatus, ResidualSample};
 impl Simulation {
     /// Starts (or restarts) a resumable solve from the current displacement
     /// with the scene's solver. The contact iteration starts at the first
-    /// [`relax`](Self::relax) call.
+    /// [`relax`](Self::relax) call. A load-controlled growth step under way
+    /// starts again at its next call (as after [`solve`](Self::solve), which
+    /// is this solve run to its end).
     pub fn start_relaxation(&mut self) {
+        self.scratch.growth_start = None;
         self.scratch.residual.clear();
         self.scratch.job = None;
     }

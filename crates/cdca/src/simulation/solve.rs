@@ -16,7 +16,6 @@ impl Simulation {
     /// solver; fills SIFs and criterion at every free tip. The resumable
     /// solve of [`relax`](Self::relax), run to its end.
     pub fn solve(&mut self) -> Result<SolveReport, SolveError> {
-        self.scratch.growth_start = None;
         self.start_relaxation();
         let start = Instant::now();
         while !self.relax(usize::MAX)?.finished {}

@@ -300,7 +300,12 @@ impl Runner {
         let Some(sim) = self.sim.as_mut() else {
             return Ok(());
         };
-        let result = sim.relax(1);
+        // a new simulation first integrates its elements (no sweep yet):
+        // Step goes on to its one sweep
+        let mut result = sim.relax(1);
+        while result.as_ref().is_ok_and(|r| !r.finished) && !sim.is_relaxing() {
+            result = sim.relax(1);
+        }
         let solved = sim.is_solved();
         self.refresh(solved, result.as_ref().ok().copied());
         result.map(|_| ()).map_err(|e| e.to_string())

@@ -1184,7 +1184,10 @@ fn a_capped_relaxation_is_shown_as_not_converged() {
         s.solver.kind = cdca::scene::SolverKind::Direct;
         s.solver.max_contact_iterations = 2;
     });
-    h.run_steps(3);
+    // the edit's solve runs in slices
+    h.run_steps(1);
+    run_until_paused(&mut h, 200);
+    h.run_steps(2);
     let r = h.state().relax_status();
     assert!(r.is_some_and(|r| r.finished && !r.converged), "{r:?}");
     h.get_by_label("no (not converged)");
@@ -1389,7 +1392,9 @@ fn a_scene_saved_mid_growth_reopens_and_grows_the_identical_next_step() {
         source: "saved.json".to_owned(),
         text: saved,
     });
-    reopened.run_steps(3);
+    // the opened scene's solve runs in slices; Grow one step waits for it
+    reopened.run_steps(1);
+    run_until_paused(&mut reopened, 200);
     assert!(
         reopened.state().message().is_none(),
         "{:?}",

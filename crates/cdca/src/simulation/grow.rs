@@ -123,12 +123,12 @@ impl Simulation {
         Ok(Some(self.finish_growth_step(&report, &trials, true)))
     }
 
-    /// One chunk of what a rebuild after growth left to do (see
-    /// [`rebuild`](Self::rebuild)): the stiffness of
+    /// One chunk of what a rebuild after growth, or a new simulation, left
+    /// to do (see [`rebuild`](Self::rebuild)): the stiffness of
     /// [`INTEGRATION_CHUNK`] quadrature points of the changed elements, or, for the direct solver,
     /// the stiffness pattern and its symbolic factorisation. Returns
     /// whether nothing is left, i.e. whether a solve can start.
-    fn prepare_chunk(&mut self) -> Result<bool, SolveError> {
+    pub(super) fn prepare_chunk(&mut self) -> Result<bool, SolveError> {
         let x = &mut self.scratch.xfem;
         if !x.is_integrated() {
             x.integrate(INTEGRATION_CHUNK);

@@ -28,9 +28,11 @@ impl Simulation {
 
     /// Advances the solve started by
     /// [`start_relaxation`](Self::start_relaxation) (started now if none is
-    /// under way) by one linear-solver setup (a factorisation, cells or a
-    /// multigrid hierarchy) or at most `max_iterations` sweeps or
-    /// iterations; cheap enough to call once per frame. A setup is done
+    /// under way) by one chunk of what the discretisation still lacks (the
+    /// element stiffness of a new simulation, the direct solver's pattern),
+    /// one linear-solver setup (a factorisation, cells or a multigrid
+    /// hierarchy) or at most `max_iterations` sweeps or iterations; cheap
+    /// enough to call once per frame. A setup is done
     /// only when the contact states differ from those the solver's matrix
     /// was built with: the matrix is then new; otherwise only the
     /// right-hand side changes.
@@ -49,7 +51,16 @@ impl Simulation {
     /// from it. The tips are evaluated either way.
     pub fn relax(&mut self, max_iterations: usize) -> Result<RelaxStatus, SolveError> {
         if self.scratch.job.is_none() {
-            self.scratch.xfem.integrate(usize::MAX);
+            // a new simulation's element stiffness (and, for the direct
+            // solver, its pattern), one chunk per call
+            if !self.prepare_chunk()? {
+                return Ok(RelaxStatus {
+                    iterations: 0,
+                    residual: 1.0,
+                    converged: false,
+                    finished: false,
+                });
+            }
             self.scratch.residual.clear();
             let load = self
                 .scratch

@@ -14,9 +14,11 @@ use crate::report::{ContactReport, IntactRockReport, SolveReport, SolverReport};
 impl Simulation {
     /// Full solve (with contact) at the current load factor with the scene's
     /// solver; fills SIFs and criterion at every free tip. The resumable
-    /// solve of [`relax`](Self::relax), run to its end.
+    /// solve of [`relax`](Self::relax), run to its end. Its `seconds` leave
+    /// out the element integration of a new simulation (part of the build).
     pub fn solve(&mut self) -> Result<SolveReport, SolveError> {
         self.start_relaxation();
+        self.scratch.xfem.integrate(usize::MAX);
         let start = Instant::now();
         while !self.relax(usize::MAX)?.finished {}
         Ok(SolveReport {

@@ -125,14 +125,17 @@ fn unsplit(scene: &Scene, cracks: &[Crack]) -> Result<(), SceneError> {
 }
 
 impl Simulation {
-    /// Builds the discretisation of a (valid) scene; no solve yet. Fails
-    /// when the cracks split the specimen ([`check_cracks`]) or
+    /// Builds the discretisation of a (valid) scene; no solve yet: the
+    /// enriched elements' stiffness is integrated by the first
+    /// [`relax`](Self::relax) calls, a chunk at a time, as after growth.
+    /// Fails when the cracks split the specimen ([`check_cracks`]) or
     /// `growth.resume` does not fit the cracks' discretisation.
     pub fn new(scene: Scene) -> Result<Self, SolveError> {
         let model = Model::new(scene.clone());
         let cracks = model.initial_cracks();
         unsplit(&scene, &cracks)?;
-        let xfem = model.discretise(cracks.clone());
+        let xfem = model.rediscretise(cracks.clone(), None);
+        let rebuild_points = xfem.points_to_integrate();
         let f_ext = crate::discretisation::loads::traction_forces(&xfem, &scene.boundary);
         let n = xfem.n_free();
         let nf = xfem.faces.len();
@@ -165,7 +168,7 @@ impl Simulation {
                 critical: None,
                 contact_guess: None,
                 factored: None,
-                rebuild_points: 0,
+                rebuild_points,
             },
             state: State {
                 scene,

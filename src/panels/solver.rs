@@ -568,7 +568,7 @@ fn growth_progress(view: &crate::solution::SolutionView) -> String {
     let step = view.history.len() + 1;
     if let Some(done) = view.rebuild {
         return format!(
-            "step {step}: integrating the grown tips' elements, {:.0}%",
+            "step {step}: integrating the cracked elements' stiffness, {:.0}%",
             100.0 * done
         );
     }

@@ -101,9 +101,10 @@ impl Simulation {
         self.scratch.job.is_some()
     }
 
-    /// While the stiffness of the elements a growth step changed is being
-    /// integrated (see [`advance_growth`](Self::advance_growth)): the
-    /// fraction done, in [0, 1).
+    /// While the stiffness of the elements a growth step changed, or of a
+    /// new simulation's enriched elements, is being integrated (see
+    /// [`advance_growth`](Self::advance_growth), [`relax`](Self::relax)):
+    /// the fraction done, in [0, 1).
     pub fn rebuild_progress(&self) -> Option<f64> {
         let left = self.scratch.xfem.points_to_integrate();
         (left > 0).then(|| 1.0 - left as f64 / self.scratch.rebuild_points.max(left) as f64)

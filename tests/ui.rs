@@ -994,7 +994,7 @@ fn relax_with_the_automaton_shows_the_field_before_convergence() {
 /// Run growth with an iterative solver (the automaton, which growth
 /// accelerates to multigrid-CG by default): every frame advances the run,
 /// with a new residual sample, a new solve, a new growth step, a chunk of
-/// the rebuild after growth (the grown tips' elements integrated over
+/// the rebuild after growth (the cracked elements integrated over
 /// frames) or the field at λ_cr sampled (shown before the tips move on);
 /// every frame outside those two with new residual samples or a new step;
 /// the progress line shows the sweeps and residual, or the rebuild.
@@ -1045,7 +1045,7 @@ fn run_growth_with_an_iterative_solver_advances_every_frame() {
     );
     assert!(
         h.query_by_label_contains(", residual").is_some()
-            || h.query_by_label_contains("integrating the grown tips")
+            || h.query_by_label_contains("integrating the cracked elements")
                 .is_some()
             || h.state().run_mode() != RunMode::Growing,
         "progress line"

@@ -361,9 +361,11 @@ impl Runner {
         Ok(())
     }
 
-    /// Stops the run in progress where it is (it can go on later).
+    /// Stops the run in progress where it is (it can go on later; a direct
+    /// solve starts again at the next Solve).
     pub fn pause(&mut self) {
         self.run = None;
+        self.direct_solve = None;
     }
 
     /// Stops the run in progress unless it is a direct solve, which ends
@@ -485,6 +487,7 @@ impl Task for Runner {
             Err(e) => {
                 self.refresh(solved, None);
                 self.run = None;
+                self.direct_solve = None;
                 Err(e.to_string())
             }
         }

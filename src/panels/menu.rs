@@ -208,7 +208,8 @@ pub fn message_ui(ui: &mut Ui, message: Option<&Message>, cmds: &mut Vec<Command
         });
 }
 
-/// Frame times in the canvas's top-left corner.
+/// Frame times at the canvas's bottom left, above the pointer's position (the
+/// load label is at the top, the colour scale at the top right).
 pub fn frame_overlay_ui(ui: &Ui, canvas: Rect, stats: &FrameStats) {
     let text = format!(
         "frame (logic + UI): last {}  mean {}  p95 {}  max {}\nsolver per frame: {}   frame interval: {}   ({} frames)",
@@ -221,12 +222,13 @@ pub fn frame_overlay_ui(ui: &Ui, canvas: Rect, stats: &FrameStats) {
         stats.len(),
     );
     let painter = ui.painter_at(canvas);
-    let pos = canvas.left_top() + egui::vec2(8.0, 8.0);
     let galley = painter.layout_no_wrap(
         text,
         egui::FontId::monospace(11.0),
         ui.visuals().strong_text_color(),
     );
+    // the pointer's line is 12 pt monospace, 8 px above the bottom edge
+    let pos = canvas.left_bottom() + egui::vec2(8.0, -30.0 - galley.size().y);
     painter.rect_filled(
         Rect::from_min_size(pos, galley.size()).expand(4.0),
         3.0,

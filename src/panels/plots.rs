@@ -199,7 +199,7 @@ fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut V
 
 /// A legend entry's sample of the series: its line, dashes or marker (a
 /// vertical line for `None`, a reference line).
-fn swatch(ui: &mut Ui, colour: Color32, style: Option<Style>) {
+pub(crate) fn swatch(ui: &mut Ui, colour: Color32, style: Option<Style>) {
     let (rect, _) = ui.allocate_exact_size(Vec2::new(20.0, 12.0), Sense::hover());
     let p = ui.painter();
     let stroke = Stroke::new(2.0, colour);

@@ -7,9 +7,11 @@ use cdca::report::{Mode, TipReport};
 use cdca::scene::CriterionKind;
 use cdca::scene::SceneFile;
 use egui::{Color32, Grid, Ui};
-use egui_plot::{Legend, Line, LineStyle, Plot, PlotPoints};
+use egui_plot::{Line, LineStyle, Plot, PlotPoints};
 
 use crate::command::Command;
+use crate::figure::Style;
+use crate::panels::plots::swatch;
 use crate::run::RunMode;
 use crate::units;
 use crate::view::AppView;
@@ -162,6 +164,32 @@ fn polar_plot_ui(ui: &mut Ui, scene: &SceneFile, tip: &TipReport, c: &CriterionC
     if comprehensive && c.shear_envelope.is_none() {
         ui.weak("Shear branch off: the faces at this tip are open.");
     }
+    // the key above the plot, as on the other plots: inside it would cover the curves
+    let shear = comprehensive && !tau_limit.is_empty();
+    let chosen = tip.criterion.mode != Mode::None;
+    // two rows that fit the panel: the tension curves, then the shear ones
+    let rows = [
+        vec![
+            ("σ_θθ", SIGMA_COLOR, Style::Line, true),
+            ("σ_t", SIGMA_COLOR, Style::Dashed, true),
+            ("0 MPa", Color32::GRAY, Style::Dashed, true),
+        ],
+        vec![
+            ("|τ_rθ|", TAU_COLOR, Style::Line, shear),
+            ("shear limit", TAU_COLOR, Style::Dashed, shear),
+            ("chosen angle", ANGLE_COLOR, Style::Line, chosen),
+        ],
+    ];
+    for row in rows {
+        ui.horizontal(|ui| {
+            for (name, colour, style, shown) in row {
+                if shown {
+                    swatch(ui, colour, Some(style));
+                    ui.label(name);
+                }
+            }
+        });
+    }
     // square, as wide as the panel, with the outermost curve inside
     let reach = outer * 1e-6 * 1.05;
     Plot::new("polar")
@@ -174,7 +202,6 @@ fn polar_plot_ui(ui: &mut Ui, scene: &SceneFile, tip: &TipReport, c: &CriterionC
         .include_y(reach)
         .show_axes(false)
         .show_grid(false)
-        .legend(Legend::default())
         .show(ui, |plot| {
             plot.line(
                 Line::new("0 MPa", circle(-base * 1e-6))

@@ -5,20 +5,20 @@
 # horizontal in steps of 5° and every face friction μ = 0–0.6 in steps of
 # 0.1 at which the faces slide (τ > μσ_n), each grown to failure with
 # `cdca grow` (product defaults; MESH sets the elements per side, default
-# 60). Prints one row per flaw: outcome, steps, whether every step
+# 60; LENGTH the flaw's length in mm, default 3.5). Prints one row per flaw: outcome, steps, whether every step
 # converged, the first growth (mode, angle to the flaw), each wing's length
 # in flaw lengths and the angle from the load axis of its last flaw length,
 # and the steps grown in shear; writes bench-out/flaw_range.csv.
-# Usage: [MESH=100] bash scripts/flaw_range.sh
+# Usage: [MESH=100] [LENGTH=3] bash scripts/flaw_range.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p cdca-cli
 mkdir -p bench-out/flaw_range
-MESH="${MESH:-60}" python3 - <<'PY'
+MESH="${MESH:-60}" LENGTH="${LENGTH:-3.5}" python3 - <<'PY'
 import csv, json, math, os, subprocess
 base = json.load(open("assets/scenes/specimen_single_flaw.json"))
 n = int(os.environ["MESH"])
-length_m, h = 0.0035, base["specimen"]["width"] / n
+length_m, h = float(os.environ["LENGTH"]) / 1000.0, base["specimen"]["width"] / n
 
 def arc(p):
     return sum(math.dist(a, b) for a, b in zip(p, p[1:]))

@@ -1611,7 +1611,7 @@ fn a_step_that_stepped_around_an_unsolved_trial_says_so() {
 /// A load ramp that stays below every tip's criterion ends `completed`
 /// with no tip grown: the Angles tab says that (not "no growth steps
 /// yet"), and the outcome says on hover what `completed` means for a
-/// load-stepped run.
+/// load-stepped run and how near an edge the nearest free tip is.
 #[test]
 #[cfg_attr(
     debug_assertions,
@@ -1644,7 +1644,11 @@ fn a_load_ramp_below_the_criterion_says_no_tip_grew() {
     );
     h.get_by_label("completed").hover();
     h.run_steps(60);
-    h.get_by_label("All 3 load steps applied (growth.load_steps).");
+    // and how far the free tip nearest an edge stopped from it (the flaw's
+    // ends are 15 − 3 cos 45° = 12.87 mm from two edges each; h = 0.5 mm)
+    h.get_by_label_contains(
+        "All 3 load steps applied (growth.load_steps). The free tip nearest a boundary is 12.87 mm (25.7 elements) from the ",
+    );
 }
 
 /// The Study tab offers only the parameters the scene has: on the default

@@ -1,8 +1,8 @@
 //! Solver choice and settings, the run controls and the progress of the
 //! work in hand.
 
-use cdca::report::Outcome;
-use cdca::scene::{ContactUpdate, GrowthControl, GrowthSpec, Ordering, SolverKind};
+use cdca::report::{Outcome, TipReport};
+use cdca::scene::{ContactUpdate, GrowthControl, GrowthSpec, Ordering, SceneFile, SolverKind};
 use cdca::solvers::automaton::sor_omega;
 use egui::{Button, Grid, ProgressBar, Ui};
 
@@ -427,7 +427,18 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         }
         if let Some(o) = view.outcome {
             ui.label("Outcome");
-            let (text, meaning) = outcome_text(o, &v.scene.growth);
+            let (text, mut meaning) = outcome_text(o, &v.scene.growth);
+            if o == Outcome::Completed
+                && let Some((gap, side)) = nearest_edge(&view.tips, v.scene)
+            {
+                let h = (v.scene.specimen.width / v.scene.mesh.nx as f64)
+                    .max(v.scene.specimen.height / v.scene.mesh.ny as f64);
+                meaning = format!(
+                    "{meaning} The free tip nearest a boundary is {} ({:.1} elements) from the {side} edge.",
+                    units::mm(gap),
+                    gap / h
+                );
+            }
             if o == Outcome::NotConverged {
                 let why = view.history.iter().rev().find_map(|s| s.failure.clone());
                 ui.colored_label(ui.visuals().warn_fg_color, text)
@@ -450,6 +461,23 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         }
     });
     stepped_around_ui(ui, &view.history);
+}
+
+/// The free tip nearest the specimen's boundary: its distance (m) and the
+/// side (`None` without free tips). A run that ends `completed` often has a
+/// wing an element or two short of an edge, which reads as failed.
+fn nearest_edge(tips: &[TipReport], scene: &SceneFile) -> Option<(f64, &'static str)> {
+    let (w, h) = (scene.specimen.width, scene.specimen.height);
+    tips.iter()
+        .flat_map(|t| {
+            [
+                (t.x, "left"),
+                (w - t.x, "right"),
+                (t.y, "bottom"),
+                (h - t.y, "top"),
+            ]
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
 }
 
 /// How a growth run ended, as the report spells it (`outcome`), and what
@@ -628,5 +656,38 @@ mod tests {
         assert_eq!(iterations(SolverKind::Automaton, 2400), "2400 sweeps");
         assert_eq!(iterations(SolverKind::Multigrid, 13), "13 CG iterations");
         assert_eq!(iterations(SolverKind::Cg, 1), "1 CG iteration");
+    }
+
+    /// The nearest edge is found on every side, in the scene's coordinates
+    /// (origin at the bottom-left corner).
+    #[test]
+    fn the_nearest_edge_is_the_closest_side_of_any_free_tip() {
+        let scene = SceneFile::from_json(include_str!(
+            "../../assets/scenes/specimen_single_flaw.json"
+        ))
+        .expect("bundled scene");
+        let tip = |x: f64, y: f64| TipReport {
+            x,
+            y,
+            ..TipReport::default()
+        };
+        assert_eq!(nearest_edge(&[], &scene), None);
+        let (gap, side) =
+            nearest_edge(&[tip(0.015, 0.0296), tip(0.010, 0.012)], &scene).expect("two tips");
+        assert!(
+            (gap - 0.0004).abs() < 1e-12 && side == "top",
+            "{gap} {side}"
+        );
+        let (gap, side) =
+            nearest_edge(&[tip(0.0007, 0.015), tip(0.02, 0.0009)], &scene).expect("two tips");
+        assert!(
+            (gap - 0.0007).abs() < 1e-12 && side == "left",
+            "{gap} {side}"
+        );
+        let (gap, side) = nearest_edge(&[tip(0.0293, 0.0105)], &scene).expect("one tip");
+        assert!(
+            (gap - 0.0007).abs() < 1e-12 && side == "right",
+            "{gap} {side}"
+        );
     }
 }

@@ -300,6 +300,14 @@ impl WorkbenchApp {
     pub fn growth_solver(&self) -> cdca::scene::SolverKind {
         self.runner.growth_solver_kind(&self.scene)
     }
+    /// Quadrature points the current simulation still has to integrate
+    /// (`None` without one): 0 right after an edit that kept the
+    /// discretisation (`Simulation::with_scene`).
+    pub fn points_to_integrate(&self) -> Option<usize> {
+        self.runner
+            .simulation()
+            .map(|s| s.xfem().points_to_integrate())
+    }
     /// The relaxation status shown, if any.
     pub fn relax_status(&self) -> Option<cdca::RelaxStatus> {
         self.runner.view().relax

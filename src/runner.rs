@@ -53,6 +53,10 @@ pub struct Runner {
     sim: Option<Simulation>,
     /// The run in progress (None: paused).
     run: Option<Run>,
+    /// The simulation an edit invalidated, kept until the next build: its
+    /// discretisation is reused when the edit left it unchanged
+    /// (`Simulation::with_scene`: a load, the faces' friction, the solver).
+    spare: Option<Simulation>,
     /// `start_relaxation` was called on the current simulation.
     relaxation_started: bool,
     /// Sweeps per call of relaxation and growth.
@@ -68,7 +72,7 @@ pub struct Runner {
     direct_solve: Option<f64>,
     /// Elements of the mesh of that solve.
     last_solve_elements: usize,
-    /// Wall time of the last `Simulation::new`, s.
+    /// Wall time of the last build (`Simulation::new` or `with_scene`), s.
     last_build_seconds: f64,
     /// Growth with the automaton runs the multigrid-accelerated automaton.
     accelerate_growth: bool,
@@ -90,6 +94,7 @@ impl Default for Runner {
             checked: Err("no scene yet".to_owned()),
             sim: None,
             run: None,
+            spare: None,
             relaxation_started: false,
             pacer: Pacer::default(),
             view: SolutionView::default(),
@@ -240,7 +245,9 @@ impl Runner {
     /// (cheap; `Scene::try_from`); the discretisation is built when solver
     /// work is asked for.
     pub fn invalidate(&mut self, scene: &SceneFile) -> Result<(), String> {
-        self.sim = None;
+        if let Some(sim) = self.sim.take() {
+            self.spare = Some(sim);
+        }
         self.run = None;
         self.direct_solve = None;
         self.relaxation_started = false;
@@ -270,7 +277,11 @@ impl Runner {
         self.invalidate(scene)?;
         let valid = self.checked()?.clone();
         let start = Instant::now();
-        let sim = Simulation::new(valid).map_err(|e| e.to_string())?;
+        let sim = match self.spare.take() {
+            Some(old) => old.with_scene(valid),
+            None => Simulation::new(valid),
+        }
+        .map_err(|e| e.to_string())?;
         self.last_build_seconds = start.elapsed().as_secs_f64();
         self.sim = Some(sim);
         self.pacer.restart();
@@ -347,7 +358,13 @@ impl Runner {
                     .edit(|s| s.solver = spec)
                     .map_err(|e| e.to_string())?;
                 let start = Instant::now();
-                let sim = Simulation::new(scene).map_err(|e| e.to_string())?;
+                // the same discretisation, started afresh with the growth
+                // solver
+                let sim = match self.sim.take() {
+                    Some(old) => old.with_scene(scene),
+                    None => Simulation::new(scene),
+                }
+                .map_err(|e| e.to_string())?;
                 self.last_build_seconds = start.elapsed().as_secs_f64();
                 self.sim = Some(sim);
                 self.relaxation_started = false;

@@ -1608,6 +1608,41 @@ fn a_step_that_stepped_around_an_unsolved_trial_says_so() {
     assert!(overflow.is_empty(), "{}", overflow.join("\n"));
 }
 
+/// An edit of the flaw's friction re-solves on the kept discretisation
+/// (nothing left to integrate right after the edit), and the field shown
+/// afterwards is the new one: the faces slide, so less friction moves the
+/// stress next to the flaw by far more than 1%.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn a_friction_edit_re_solves_on_the_kept_discretisation() {
+    let mut h = solved_default();
+    h.run_steps(20);
+    let before = h.state().shown_stresses();
+    edit_scene(&mut h, |s| s.cracks[0].friction = 0.2);
+    // the frame that applies the edit: a new build would leave its cracked
+    // elements to integrate in the solve's first slices
+    h.step();
+    assert_eq!(h.state().points_to_integrate(), Some(0));
+    h.run_steps(40);
+    assert!(h.state().is_solved());
+    let after = h.state().shown_stresses();
+    assert_eq!(before.len(), after.len());
+    let largest = |v: &[[f64; 3]]| v.iter().flatten().fold(0.0_f64, |m, s| m.max(s.abs()));
+    let change = before
+        .iter()
+        .zip(&after)
+        .flat_map(|(a, b)| (0..3).map(move |k| (a[k] - b[k]).abs()))
+        .fold(0.0_f64, f64::max);
+    assert!(
+        change > 0.01 * largest(&before),
+        "largest change {change} Pa of {} Pa",
+        largest(&before)
+    );
+}
+
 /// A load ramp that stays below every tip's criterion ends `completed`
 /// with no tip grown: the Angles tab says that (not "no growth steps
 /// yet"), and the outcome says on hover what `completed` means for a

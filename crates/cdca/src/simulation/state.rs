@@ -15,7 +15,7 @@ use crate::error::{SceneError, SolveError};
 use crate::fracture::criterion::{Circle, CriterionParams, Faces};
 use crate::geometry::cracks::{Crack, TipKind, split_specimen};
 use crate::report::{GrowthStepReport, Outcome, TipReport};
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneFile, SideBc};
 use crate::solvers::automaton::AutomatonParams;
 use crate::solvers::linear::LinearSolver;
 use crate::solvers::relaxation::ResidualSample;
@@ -80,6 +80,43 @@ pub(super) struct Scratch {
     pub(super) rebuild_points: usize,
 }
 
+/// Whether `b` has the discretisation of `a`
+/// ([`Simulation::with_scene`]): the same but for load values, the faces'
+/// contact law, the criterion, the growth and the solver settings (read at
+/// solve time; the solver is made anew), name and description, and
+/// neither resumes a growth run.
+fn same_discretisation(a: &SceneFile, b: &SceneFile) -> bool {
+    if a.growth.resume.is_some() || b.growth.resume.is_some() || a.cracks.len() != b.cracks.len() {
+        return false;
+    }
+    let mut b = b.clone();
+    b.name.clone_from(&a.name);
+    b.description.clone_from(&a.description);
+    b.criterion = a.criterion.clone();
+    b.growth = a.growth.clone();
+    b.solver = a.solver.clone();
+    for (ca, cb) in a.cracks.iter().zip(&mut b.cracks) {
+        cb.friction = ca.friction;
+        cb.cohesion = ca.cohesion;
+        cb.normal_stiffness = ca.normal_stiffness;
+        cb.shear_stiffness = ca.shear_stiffness;
+    }
+    for (sa, sb) in [
+        (&a.boundary.bottom, &mut b.boundary.bottom),
+        (&a.boundary.left, &mut b.boundary.left),
+        (&a.boundary.top, &mut b.boundary.top),
+        (&a.boundary.right, &mut b.boundary.right),
+    ] {
+        if matches!(
+            (sa, &*sb),
+            (SideBc::Traction { .. }, SideBc::Traction { .. })
+        ) {
+            *sb = *sa;
+        }
+    }
+    *a == b
+}
+
 /// Whether a scene's cracks leave the specimen in one piece, checked
 /// before any work (`cdca` runs it on every scene it reads): cracks that
 /// run from the boundary back to the boundary, alone or linked
@@ -131,11 +168,50 @@ impl Simulation {
     /// Fails when the cracks split the specimen ([`check_cracks`]) or
     /// `growth.resume` does not fit the cracks' discretisation.
     pub fn new(scene: Scene) -> Result<Self, SolveError> {
-        let model = Model::new(scene.clone());
+        let model = Model::new(scene);
         let cracks = model.initial_cracks();
-        unsplit(&scene, &cracks)?;
+        unsplit(&model.scene, &cracks)?;
         let xfem = model.rediscretise(cracks.clone(), None);
         let rebuild_points = xfem.points_to_integrate();
+        Self::from_parts(model, cracks, xfem, rebuild_points)
+    }
+
+    /// A simulation of `scene` that keeps this one's discretisation (its
+    /// integrated elements, stiffness pattern and symbolic factorisation)
+    /// when nothing it depends on changed: `scene` differs from this one's
+    /// only in load values (traction sides), the faces' contact law
+    /// (friction, cohesion, stiffness), the criterion, the growth settings
+    /// (without `growth.resume`), the solver settings, name or description,
+    /// and no tip has grown here. Everything else starts afresh, as in [`new`](Self::new), so it
+    /// solves exactly as a new simulation of `scene` would; otherwise it is
+    /// one. An edit of the load or the friction in the workbench then
+    /// re-solves without integrating or ordering anything.
+    pub fn with_scene(self, scene: Scene) -> Result<Self, SolveError> {
+        if !self.state.history.is_empty() || !same_discretisation(&self.model.scene, &scene) {
+            return Self::new(scene);
+        }
+        let model = Model::new(scene);
+        let cracks = model.initial_cracks();
+        let mut xfem = self.scratch.xfem;
+        for (kept, new) in xfem.funcs.cracks.iter_mut().zip(&cracks) {
+            kept.friction = new.friction;
+            kept.cohesion = new.cohesion;
+            kept.kn = new.kn;
+            kept.kt = new.kt;
+        }
+        debug_assert!(xfem.funcs.cracks == cracks, "the same crack geometry");
+        Self::from_parts(model, cracks, xfem, self.scratch.rebuild_points)
+    }
+
+    /// The simulation of `model.scene` on the discretisation `xfem` of
+    /// `cracks`, before any solve.
+    fn from_parts(
+        model: Model,
+        cracks: Vec<Crack>,
+        xfem: Xfem,
+        rebuild_points: usize,
+    ) -> Result<Self, SolveError> {
+        let scene = model.scene.clone();
         let f_ext = crate::discretisation::loads::traction_forces(&xfem, &scene.boundary);
         let n = xfem.n_free();
         let nf = xfem.faces.len();

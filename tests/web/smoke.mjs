@@ -3,7 +3,9 @@
 // scene is solved and its stress field drawn, clicks Step, "Grow one step"
 // (three times) and Solve by their labels, checks the app's state after each click,
 // turns on the frame-time overlay and saves a screenshot; then saves the
-// scene and the crack paths (downloads) and opens another scene through the
+// scene and the crack paths (downloads), presses Reset twice (the second
+// keeps the discretisation; the app logs both solves) and opens another
+// scene through the
 // file dialog. Fails on any console error, page error or panic message.
 //
 // Then, in a new page (a fresh profile, so the default scene again), it
@@ -226,6 +228,20 @@ try {
     const csvRows = csvText.trim().split("\n").length - 1;
     if (!csvFile.endsWith(".csv") || csvRows !== grown.crackPoints) {
         throw new Error(`${csvFile}: ${csvRows} rows for ${grown.crackPoints} crack points`);
+    }
+
+    // Reset twice: the first builds the drawn cracks anew (the simulation
+    // had grown), the second keeps that discretisation
+    // (Simulation::with_scene); the app logs each one's build and solve.
+    for (const which of ["after growth: built anew", "again: discretisation kept"]) {
+        const tReset = Date.now();
+        await click("Reset");
+        await park();
+        await waitState(
+            () => window.cdcaState?.solved && window.cdcaState.growthSteps === 0 && window.cdcaState.fieldShown,
+            `Reset ${which}, solved`,
+        );
+        log(`Reset ${which}: ${Date.now() - tReset} ms from click to field shown`);
     }
 
     // Opening a scene: rfd's AsyncFileDialog clicks a file input (the

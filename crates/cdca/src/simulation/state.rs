@@ -188,11 +188,17 @@ impl Simulation {
     /// re-solves without integrating or ordering anything.
     pub fn with_scene(self, scene: Scene) -> Result<Self, SolveError> {
         if !self.state.history.is_empty() || !same_discretisation(&self.model.scene, &scene) {
+            // freed first: a large factor need not live beside the new build
+            drop(self);
             return Self::new(scene);
         }
+        // the rest (solver and factor, state) is freed at the block's end
+        let (mut xfem, rebuild_points) = {
+            let old = self;
+            (old.scratch.xfem, old.scratch.rebuild_points)
+        };
         let model = Model::new(scene);
         let cracks = model.initial_cracks();
-        let mut xfem = self.scratch.xfem;
         for (kept, new) in xfem.funcs.cracks.iter_mut().zip(&cracks) {
             kept.friction = new.friction;
             kept.cohesion = new.cohesion;
@@ -200,7 +206,7 @@ impl Simulation {
             kept.kt = new.kt;
         }
         debug_assert!(xfem.funcs.cracks == cracks, "the same crack geometry");
-        Self::from_parts(model, cracks, xfem, self.scratch.rebuild_points)
+        Self::from_parts(model, cracks, xfem, rebuild_points)
     }
 
     /// The simulation of `model.scene` on the discretisation `xfem` of

@@ -8,7 +8,8 @@
 # 60; LENGTH the flaw's length in mm, default 3.5). Prints one row per flaw: outcome, steps, whether every step
 # converged, the first growth (mode, angle to the flaw), each wing's length
 # in flaw lengths and the angle from the load axis of its last flaw length,
-# and the steps grown in shear; writes bench-out/flaw_range.csv.
+# and the steps grown in shear; writes bench-out/flaw_range.csv (with
+# another LENGTH, bench-out/flaw_range_<LENGTH>mm.csv).
 # Usage: [MESH=100] [LENGTH=3] bash scripts/flaw_range.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,6 +20,7 @@ import csv, json, math, os, subprocess
 base = json.load(open("assets/scenes/specimen_single_flaw.json"))
 n = int(os.environ["MESH"])
 length_m, h = float(os.environ["LENGTH"]) / 1000.0, base["specimen"]["width"] / n
+tag = "" if os.environ["LENGTH"] == "3.5" else f"_{os.environ['LENGTH']}mm"
 
 def arc(p):
     return sum(math.dist(a, b) for a, b in zip(p, p[1:]))
@@ -45,7 +47,7 @@ for deg in range(30, 61, 5):
         scene["cracks"] = [{"points": ends, "friction": mu}]
         scene["mesh"] = {"nx": n, "ny": n}
         scene["name"] = f"{deg}° flaw, μ = {mu}"
-        path = f"bench-out/flaw_range/b{deg}_mu{mu}.json"
+        path = f"bench-out/flaw_range/b{deg}_mu{mu}{tag}.json"
         json.dump(scene, open(path, "w"), indent=1)
         run = subprocess.run(["target/release/cdca", "grow", path], capture_output=True, text=True)
         report = json.loads(run.stdout)
@@ -65,7 +67,7 @@ for deg in range(30, 61, 5):
                      round(wings[0][0], 2), round(wings[0][1], 1), round(wings[1][0], 2), round(wings[1][1], 1), shear])
         if not (converged and all(l >= 2.0 and e <= 15.0 for l, e in wings)):
             misses.append(f"{deg}°/{mu}")
-with open("bench-out/flaw_range.csv", "w", newline="") as f:
+with open(f"bench-out/flaw_range{tag}.csv", "w", newline="") as f:
     w = csv.writer(f)
     w.writerow(["beta_deg", "mu", "drive_over_sigma", "outcome", "steps", "every_step_converged", "first_growth",
                 "wing1_lengths", "wing1_end_deg", "wing2_lengths", "wing2_end_deg", "shear_steps"])

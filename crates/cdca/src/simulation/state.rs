@@ -182,10 +182,11 @@ impl Simulation {
     /// only in load values (traction sides), the faces' contact law
     /// (friction, cohesion, stiffness), the criterion, the growth settings
     /// (without `growth.resume`), the solver settings, name or description,
-    /// and no tip has grown here. Everything else starts afresh, as in [`new`](Self::new), so it
-    /// solves exactly as a new simulation of `scene` would; otherwise it is
-    /// one. An edit of the load or the friction in the workbench then
-    /// re-solves without integrating or ordering anything.
+    /// and no tip has grown here. Everything else starts afresh, as in
+    /// [`new`](Self::new), so it solves exactly as a new simulation of
+    /// `scene` would; otherwise it is one. An edit of the load or the
+    /// friction in the workbench then re-solves without integrating or
+    /// ordering anything.
     pub fn with_scene(self, scene: Scene) -> Result<Self, SolveError> {
         if !self.state.history.is_empty() || !same_discretisation(&self.model.scene, &scene) {
             // freed first: a large factor need not live beside the new build

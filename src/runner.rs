@@ -276,16 +276,25 @@ impl Runner {
     pub fn rebuild(&mut self, scene: &SceneFile) -> Result<(), String> {
         self.invalidate(scene)?;
         let valid = self.checked()?.clone();
+        let old = self.spare.take();
+        self.build(old, valid)?;
+        self.pacer.restart();
+        self.stale = false;
+        Ok(())
+    }
+
+    /// Makes the simulation of `scene`, on `old`'s discretisation where
+    /// the scene leaves it unchanged (`Simulation::with_scene`), and times
+    /// that build.
+    fn build(&mut self, old: Option<Simulation>, scene: Scene) -> Result<(), String> {
         let start = Instant::now();
-        let sim = match self.spare.take() {
-            Some(old) => old.with_scene(valid),
-            None => Simulation::new(valid),
+        let sim = match old {
+            Some(old) => old.with_scene(scene),
+            None => Simulation::new(scene),
         }
         .map_err(|e| e.to_string())?;
         self.last_build_seconds = start.elapsed().as_secs_f64();
         self.sim = Some(sim);
-        self.pacer.restart();
-        self.stale = false;
         Ok(())
     }
 
@@ -357,16 +366,10 @@ impl Runner {
                     .scene()
                     .edit(|s| s.solver = spec)
                     .map_err(|e| e.to_string())?;
-                let start = Instant::now();
                 // the same discretisation, started afresh with the growth
                 // solver
-                let sim = match self.sim.take() {
-                    Some(old) => old.with_scene(scene),
-                    None => Simulation::new(scene),
-                }
-                .map_err(|e| e.to_string())?;
-                self.last_build_seconds = start.elapsed().as_secs_f64();
-                self.sim = Some(sim);
+                let old = self.sim.take();
+                self.build(old, scene)?;
                 self.relaxation_started = false;
                 self.refresh(false, None);
             }

@@ -431,12 +431,10 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
             if o == Outcome::Completed
                 && let Some((gap, side)) = nearest_edge(&view.tips, v.scene)
             {
-                let h = (v.scene.specimen.width / v.scene.mesh.nx as f64)
-                    .max(v.scene.specimen.height / v.scene.mesh.ny as f64);
                 meaning = format!(
                     "{meaning} The free tip nearest a boundary is {} ({:.1} elements) from the {side} edge.",
                     units::mm(gap),
-                    gap / h
+                    gap / v.scene.element_size()
                 );
             }
             if o == Outcome::NotConverged {

@@ -221,7 +221,7 @@ fn polar_plot_ui(ui: &mut Ui, scene: &SceneFile, tip: &TipReport, c: &CriterionC
                     .color(SIGMA_COLOR)
                     .style(LineStyle::dashed_loose()),
             );
-            if comprehensive && !tau_limit.is_empty() {
+            if shear {
                 plot.line(
                     Line::new("|τ_rθ|", polar(&c.theta_deg, tau_abs.iter().copied(), base))
                         .color(TAU_COLOR)
@@ -236,7 +236,7 @@ fn polar_plot_ui(ui: &mut Ui, scene: &SceneFile, tip: &TipReport, c: &CriterionC
                     .style(LineStyle::dashed_loose()),
                 );
             }
-            if tip.criterion.mode != Mode::None {
+            if chosen {
                 let a = tip.criterion.angle_deg.to_radians();
                 let r = outer * 1e-6;
                 plot.line(

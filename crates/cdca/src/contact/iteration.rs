@@ -394,7 +394,7 @@ impl ContactSolve {
             differ(&sig, &system.signature)
         };
         let (residual, unsettled, settled) = if unsettled == 0 {
-            self.outer_step(x, committed, u, &mut states, &limits, more, solved)
+            self.outer_step(x, committed, u, &mut states, &sig, &limits, more, solved)
         } else {
             let change = relative_change(u, &self.before);
             self.damped_step(x, committed, u, &mut states, &limits, more, solved);
@@ -429,8 +429,9 @@ impl ContactSolve {
     /// when the Coulomb return mapping at `g` gives the same states and the
     /// limits or the inner solutions settled; otherwise, with iterations
     /// left (`more`), the limits move on ([`LimitMix::next`]) and `states`
-    /// are those of the new limits. Returns the outer change, the points
-    /// not in their Coulomb state, and whether it converged.
+    /// are those of the new limits. `sig` is the [`signature`] of `states`
+    /// as they come. Returns the outer change, the points not in their
+    /// Coulomb state, and whether it converged.
     #[allow(clippy::too_many_arguments)]
     fn outer_step(
         &mut self,
@@ -438,6 +439,7 @@ impl ContactSolve {
         committed: &[FaceState],
         u: &[f64],
         states: &mut Vec<FaceState>,
+        sig: &[(ContactState, bool, bool)],
         limits: &[f64],
         more: bool,
         solved: Vec<f64>,
@@ -460,7 +462,7 @@ impl ContactSolve {
         let limit_change = relative_change(&slipping(&target), &slipping(limits));
         let residual = outer.map_or(limit_change, |c| c.min(limit_change));
         let coulomb = coulomb_states(x, u, committed);
-        let unsettled = differ(&signature(&coulomb), &signature(states));
+        let unsettled = differ(&signature(&coulomb), sig);
         let settled = unsettled == 0 && residual <= self.params.tolerance;
         if settled {
             *states = coulomb;

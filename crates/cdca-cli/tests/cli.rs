@@ -122,6 +122,33 @@ const BAD: &[(&str, &str, &str, &str)] = &[
         "specimen",
     ),
     ("wrong type", r#""nx": 10"#, r#""nx": -10"#, "line 4"),
+    // Magnitudes the arithmetic cannot carry: each of these used to run,
+    // to a non-finite solution (exit 1) or a report with a NaN angle
+    // (exit 0).
+    (
+        "young far below any rock",
+        r#""young": 4.78e9"#,
+        r#""young": 1e-300"#,
+        "`material.young` = 1e-300: is outside 1e-30 to 1e30",
+    ),
+    (
+        "cohesion beyond any rock",
+        r#""poisson": 0.25"#,
+        r#""poisson": 0.25, "cohesion": 1e300"#,
+        "`material.cohesion` = 1e300: is outside 1e-30 to 1e30",
+    ),
+    (
+        "traction above E",
+        r#""normal": -10e6"#,
+        r#""normal": -5e9"#,
+        "`boundary.top.normal` = -5000000000: is not below Young's modulus",
+    ),
+    (
+        "joint stiffer than round-off allows",
+        r#""normal_stiffness": 200e9"#,
+        r#""normal_stiffness": 1e29"#,
+        "`cracks[0].normal_stiffness` = 1e29: k h/E = 6.276e17",
+    ),
 ];
 
 /// Where each test writes its files: a fresh folder under the system's

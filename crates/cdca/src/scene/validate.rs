@@ -13,6 +13,21 @@ use crate::scene::{ArcSpec, CrackSpec, Material, SceneFile, SideBc, SolverKind};
 /// Largest accepted mesh, in elements (`nx × ny`).
 pub const MAX_ELEMENTS: usize = 4_000_000;
 
+/// Largest magnitude of a physical value in SI units ([`MIN_MAGNITUDE`]
+/// the smallest non-zero one). No quantity of a rock specimen is within
+/// ten orders of either (a penalty stiffness of 1e15 Pa/m, a length of a
+/// micrometre); inside the range, products of the ten or so factors that
+/// meet in a stiffness entry, a load vector's squared norm or the
+/// process-zone radius `(K_IC/σ_t)²/2π` stay finite and normal in double
+/// precision. Outside it the solver's arithmetic overflows or underflows
+/// (a Young's modulus of 1e-300 Pa gave a non-finite solution, a
+/// cohesion of 1e300 Pa a process zone of 0 m and a criterion angle of
+/// NaN).
+const MAX_MAGNITUDE: f64 = 1e30;
+
+/// Smallest magnitude of a non-zero physical value (see [`MAX_MAGNITUDE`]).
+const MIN_MAGNITUDE: f64 = 1e-30;
+
 type Check = Result<(), SceneError>;
 
 impl SceneFile {
@@ -31,9 +46,14 @@ impl SceneFile {
 
     fn validate_specimen_and_mesh(&self) -> Check {
         let s = &self.specimen;
-        positive("specimen.width", s.width)?;
-        positive("specimen.height", s.height)?;
-        positive("specimen.thickness", s.thickness)?;
+        for (field, v) in [
+            ("specimen.width", s.width),
+            ("specimen.height", s.height),
+            ("specimen.thickness", s.thickness),
+        ] {
+            positive(field, v)?;
+            physical(field, v)?;
+        }
         let m = &self.mesh;
         at_least_one("mesh.nx", m.nx)?;
         at_least_one("mesh.ny", m.ny)?;
@@ -45,7 +65,7 @@ impl SceneFile {
             ensure(
                 finite(field, r)? >= 1.0,
                 field,
-                r,
+                Num(r),
                 "must be at least 1 (element sizes)",
             )?;
         }
@@ -67,14 +87,37 @@ impl SceneFile {
             }
         }
         non_negative(&field(".friction"), crack.friction)?;
+        physical(&field(".friction"), crack.friction)?;
         non_negative(&field(".cohesion"), crack.cohesion)?;
-        if let Some(k) = crack.normal_stiffness {
-            positive(&field(".normal_stiffness"), k)?;
-        }
-        if let Some(k) = crack.shear_stiffness {
-            positive(&field(".shear_stiffness"), k)?;
+        physical(&field(".cohesion"), crack.cohesion)?;
+        for (name, k) in [
+            (".normal_stiffness", crack.normal_stiffness),
+            (".shear_stiffness", crack.shear_stiffness),
+        ] {
+            if let Some(k) = k {
+                self.penalty(&field(name), k)?;
+            }
         }
         Ok(())
+    }
+
+    /// A joint stiffness `k` (Pa/m): positive, and `k h/E` below 1/ε, the
+    /// ratio at which the rock's own stiffness is lost in the round-off of
+    /// the faces' (with `k h/E` = 1e17 the factorisation of the default
+    /// scene found a negative pivot; up to 1e12 the solve runs, and says
+    /// when its contact iteration does not settle).
+    fn penalty(&self, field: &str, k: f64) -> Check {
+        positive(field, k)?;
+        physical(field, k)?;
+        let ratio = k * self.element_size() / self.material.young;
+        let reason = format!(
+            "k h/E = {ratio:.3e} (h = {:.4e} m, E = {:.4e} Pa) is beyond 1/ε = {:.1e}: \
+             the rock's stiffness would be lost in the round-off of the joint's",
+            self.element_size(),
+            self.material.young,
+            1.0 / f64::EPSILON
+        );
+        ensure(ratio * f64::EPSILON < 1.0, field, Num(k), reason)
     }
 
     /// A crack polyline: at least 2 finite points inside the specimen, a
@@ -98,7 +141,12 @@ impl SceneFile {
         }
         let tiny = 1e-12 * self.specimen.width.max(self.specimen.height);
         let length: f64 = points.windows(2).map(|s| distance(s[0], s[1])).sum();
-        ensure(length > tiny, field, length, "the crack has zero length")?;
+        ensure(
+            length > tiny,
+            field,
+            Num(length),
+            "the crack has zero length",
+        )?;
         for k in 1..points.len() {
             let reason = "repeats the previous point (zero-length segment)";
             let long = distance(points[k - 1], points[k]) > tiny;
@@ -124,13 +172,14 @@ impl SceneFile {
     fn validate_arc(&self, field: &str, arc: &ArcSpec, crack: &CrackSpec) -> Check {
         finite_point(&format!("{field}.center"), arc.center)?;
         positive(&format!("{field}.radius"), arc.radius)?;
+        physical(&format!("{field}.radius"), arc.radius)?;
         finite(&format!("{field}.start_deg"), arc.start_deg)?;
         let end = format!("{field}.end_deg");
         let sweep = (finite(&end, arc.end_deg)? - arc.start_deg).abs();
         let reason = "equals start_deg: the arc has zero length";
-        ensure(sweep > 0.0, &end, arc.end_deg, reason)?;
+        ensure(sweep > 0.0, &end, Num(arc.end_deg), reason)?;
         let reason = "the arc sweeps 360° or more (a closed crack cuts a piece free)";
-        ensure(sweep < 360.0, &end, arc.end_deg, reason)?;
+        ensure(sweep < 360.0, &end, Num(arc.end_deg), reason)?;
         let polyline = crack.polyline(self.element_size());
         self.validate_polyline(field, &polyline, |_| field.to_owned())
     }
@@ -145,8 +194,9 @@ impl SceneFile {
         ];
         for (side, bc) in sides {
             if let SideBc::Traction { normal, shear } = bc {
-                finite(&format!("boundary.{side}.normal"), normal)?;
-                finite(&format!("boundary.{side}.shear"), shear)?;
+                for (name, t) in [("normal", normal), ("shear", shear)] {
+                    self.small_strain(&format!("boundary.{side}.{name}"), t)?;
+                }
             }
         }
         for (k, point) in b.points.iter().enumerate() {
@@ -158,17 +208,24 @@ impl SceneFile {
     fn validate_settings(&self) -> Check {
         if let Some(r0) = self.criterion.r0 {
             positive("criterion.r0", r0)?;
+            physical("criterion.r0", r0)?;
         }
         let m = &self.material;
         if self.criterion.r0.is_none() && m.tensile_strength.is_none() {
             let reason = "gives no tensile strength 2c cos φ/(1 + sin φ) for the default \
                           criterion radius (K_IC/σ_t)²/2π: give material.cohesion > 0, \
                           material.tensile_strength or criterion.r0";
-            ensure(m.cohesion > 0.0, "material.cohesion", m.cohesion, reason)?;
+            ensure(
+                m.cohesion > 0.0,
+                "material.cohesion",
+                Num(m.cohesion),
+                reason,
+            )?;
         }
         let g = &self.growth;
         if let Some(da) = g.increment {
             positive("growth.increment", da)?;
+            physical("growth.increment", da)?;
         }
         at_least_one("growth.load_steps", g.load_steps)?;
         at_least_one("growth.max_steps", g.max_steps)?;
@@ -193,6 +250,20 @@ impl SceneFile {
         )
     }
 
+    /// A traction `t` (Pa) below Young's modulus in magnitude: `|t|/E` is
+    /// the strain it causes, and small-strain elasticity ends well before
+    /// 100% (a traction of 1e300 Pa overflowed the residual's norm).
+    fn small_strain(&self, field: &str, t: f64) -> Check {
+        physical(field, t)?;
+        let e = self.material.young;
+        let reason = format!(
+            "is not below Young's modulus E = {e:e} Pa in magnitude: strains of \
+             |t|/E = {:.3e} are outside small-strain elasticity",
+            t.abs() / e
+        );
+        ensure(t.abs() < e, field, Num(t), reason)
+    }
+
     /// `p` is finite and inside the closed specimen rectangle (tolerance
     /// 1e-9 of the specimen size).
     fn inside(&self, field: &str, p: [f64; 2]) -> Check {
@@ -207,24 +278,34 @@ impl SceneFile {
 
 fn validate_material(m: &Material) -> Check {
     positive("material.young", m.young)?;
+    physical("material.young", m.young)?;
     let nu = finite("material.poisson", m.poisson)?;
     let reason = "must be below 0.5 (0.5 is incompressible: the stiffness is singular)";
-    ensure(nu < 0.5, "material.poisson", nu, reason)?;
+    ensure(nu < 0.5, "material.poisson", Num(nu), reason)?;
     // ν = −1 itself is excluded too: the shear modulus E/(2(1+ν)) is infinite.
-    ensure(nu > -1.0, "material.poisson", nu, "must be greater than -1")?;
+    ensure(
+        nu > -1.0,
+        "material.poisson",
+        Num(nu),
+        "must be greater than -1",
+    )?;
     non_negative("material.cohesion", m.cohesion)?;
+    physical("material.cohesion", m.cohesion)?;
     let field = "material.friction_angle_deg";
     let phi = finite(field, m.friction_angle_deg)?;
     ensure(
         (0.0..90.0).contains(&phi),
         field,
-        phi,
+        Num(phi),
         "must be in [0, 90) degrees",
     )?;
     positive("material.k_ic", m.k_ic)?;
+    physical("material.k_ic", m.k_ic)?;
     positive("material.k_iic", m.k_iic)?;
+    physical("material.k_iic", m.k_iic)?;
     if let Some(st) = m.tensile_strength {
         positive("material.tensile_strength", st)?;
+        physical("material.tensile_strength", st)?;
     }
     Ok(())
 }
@@ -239,7 +320,7 @@ fn ensure(ok: bool, field: &str, value: impl ToString, reason: impl Into<String>
 }
 
 fn finite(field: &str, v: f64) -> Result<f64, SceneError> {
-    ensure(v.is_finite(), field, v, "must be a finite number").map(|()| v)
+    ensure(v.is_finite(), field, Num(v), "must be a finite number").map(|()| v)
 }
 
 fn finite_point(field: &str, p: [f64; 2]) -> Check {
@@ -248,16 +329,35 @@ fn finite_point(field: &str, p: [f64; 2]) -> Check {
 }
 
 fn positive(field: &str, v: f64) -> Check {
-    ensure(finite(field, v)? > 0.0, field, v, "must be positive")
+    ensure(finite(field, v)? > 0.0, field, Num(v), "must be positive")
+}
+
+/// A physical value (SI units): finite, and zero or within
+/// [`MIN_MAGNITUDE`, `MAX_MAGNITUDE`] in magnitude.
+fn physical(field: &str, v: f64) -> Check {
+    let m = finite(field, v)?.abs();
+    let ok = m == 0.0 || (MIN_MAGNITUDE..=MAX_MAGNITUDE).contains(&m);
+    let reason = format!(
+        "is outside {} to {} in magnitude (SI units), where the solver's \
+         arithmetic would overflow or underflow",
+        Num(MIN_MAGNITUDE),
+        Num(MAX_MAGNITUDE)
+    );
+    ensure(ok, field, Num(v), reason)
 }
 
 fn non_negative(field: &str, v: f64) -> Check {
-    ensure(finite(field, v)? >= 0.0, field, v, "must not be negative")
+    ensure(
+        finite(field, v)? >= 0.0,
+        field,
+        Num(v),
+        "must not be negative",
+    )
 }
 
 fn open_interval(field: &str, v: f64, low: f64, high: f64) -> Check {
     let ok = finite(field, v)? > low && v < high;
-    ensure(ok, field, v, format!("must be in ({low}, {high})"))
+    ensure(ok, field, Num(v), format!("must be in ({low}, {high})"))
 }
 
 fn at_least_one(field: &str, n: usize) -> Check {
@@ -269,7 +369,22 @@ fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
 }
 
 fn fmt_point(p: [f64; 2]) -> String {
-    format!("[{}, {}]", p[0], p[1])
+    format!("[{}, {}]", Num(p[0]), Num(p[1]))
+}
+
+/// A value as the messages show it: as written for everyday magnitudes,
+/// in exponent form beyond (`1e300`, not three hundred digits).
+struct Num(f64);
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let m = self.0.abs();
+        if m == 0.0 || !m.is_finite() || (1e-4..1e15).contains(&m) {
+            write!(f, "{}", self.0)
+        } else {
+            write!(f, "{:e}", self.0)
+        }
+    }
 }
 
 #[cfg(test)]
@@ -400,6 +515,24 @@ mod tests {
         ("solver.omega", |s| s.solver.omega = 2.0),
         ("solver.contact_tolerance", |s| s.solver.contact_tolerance = 0.0),
         ("solver.max_contact_iterations", |s| s.solver.max_contact_iterations = 0),
+        ("material.young", |s| s.material.young = 1e-300),
+        ("material.young", |s| s.material.young = 1.7e308),
+        ("material.cohesion", |s| s.material.cohesion = 1e300),
+        ("material.k_ic", |s| s.material.k_ic = 1e-300),
+        ("material.k_iic", |s| s.material.k_iic = 1e31),
+        ("material.tensile_strength", |s| s.material.tensile_strength = Some(1e300)),
+        ("specimen.thickness", |s| s.specimen.thickness = 1e300),
+        ("specimen.width", |s| s.specimen.width = 1e-31),
+        ("cracks[0].friction", |s| s.cracks[0].friction = 1e300),
+        ("cracks[1].cohesion", |s| s.cracks[1].cohesion = 1e-300),
+        ("cracks[0].normal_stiffness", |s| s.cracks[0].normal_stiffness = Some(1e30)),
+        ("cracks[0].shear_stiffness", |s| s.cracks[0].shear_stiffness = Some(1e28)),
+        ("cracks[1].arc.radius", |s| arc(s).radius = 1e-31),
+        ("boundary.top.normal", |s| s.boundary.top = Traction { normal: -1e300, shear: 0.0 }),
+        ("boundary.top.normal", |s| s.boundary.top = Traction { normal: -4.78e9, shear: 0.0 }),
+        ("boundary.right.shear", |s| s.boundary.right = Traction { normal: 0.0, shear: 5e9 }),
+        ("criterion.r0", |s| s.criterion.r0 = Some(1e-31)),
+        ("growth.increment", |s| s.growth.increment = Some(1e31)),
         ("boundary", |s| (s.boundary.left, s.boundary.points) = (SideBc::Free, vec![])),
         ("boundary", |s| (s.boundary.left, s.boundary.bottom) = (SideBc::Free, SideBc::Free)),
     ];
@@ -433,6 +566,18 @@ mod tests {
         scene.material.friction_angle_deg = 0.0;
         scene.material.cohesion = 0.0;
         scene.mesh.enrichment_radius = Some(1.0);
+        // The ends of the physical range, a traction just below E, and a
+        // joint stiffness just below k h/E = 1/ε (h = 0.3 mm, E = 1e30 Pa:
+        // k < 4.5e15 × 1e30 / 1.5e-4).
+        scene.material.young = 1e30;
+        scene.material.k_iic = 1e-30;
+        scene.cracks[0].friction = 1e30;
+        scene.boundary.top = Traction {
+            normal: -0.999e30,
+            shear: 0.0,
+        };
+        scene.cracks[0].normal_stiffness = Some(1e30);
+        scene.cracks[0].shear_stiffness = None;
         (scene.mesh.nx, scene.mesh.ny) = (2000, 2000);
         // A crack that starts on the boundary, within the tolerance.
         scene.cracks[0].points = Some(vec![[0.0, -1e-12], [0.2, 0.1]]);

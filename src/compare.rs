@@ -418,8 +418,8 @@ mod tests {
     #[test]
     fn a_race_on_a_small_scene_starts_cold_and_the_errors_fall() {
         let mut scene = default_scene();
-        scene.mesh.nx = 12;
-        scene.mesh.ny = 12;
+        scene.mesh.nx = 14;
+        scene.mesh.ny = 14;
         let mut race = Race::new(&cdca::Scene::try_from(scene).expect("valid"), 0.5);
         for _ in 0..100_000 {
             if race.finished() {

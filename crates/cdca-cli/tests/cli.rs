@@ -73,6 +73,12 @@ const BAD: &[(&str, &str, &str, &str)] = &[
         "cracks[0].points",
     ),
     (
+        "crack shorter than the mesh resolves",
+        "[[0.1, 0.1], [0.2, 0.2]]",
+        "[[0.1, 0.1], [0.15, 0.1]]",
+        "cracks[0].points` = 0.04999999999999999 m: its ends are less than 2.5 element sizes (h = 0.03 m)",
+    ),
+    (
         "crack outside",
         "[0.2, 0.2]]",
         "[0.4, 0.2]]",

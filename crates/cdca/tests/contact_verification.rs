@@ -319,7 +319,7 @@ fn relaxation_does_not_depend_on_the_slice_size() {
     for (kind, n, tol) in [
         (cdca::scene::SolverKind::Direct, 40, 1e-9),
         (cdca::scene::SolverKind::Multigrid, 40, 1e-6),
-        (cdca::scene::SolverKind::Automaton, 24, 1e-6),
+        (cdca::scene::SolverKind::Automaton, 26, 1e-6),
     ] {
         let mut s = biaxial_on(n, 0.1, 0.2, 0.0, None, 10e6);
         let reference = solve(s.clone());

@@ -229,6 +229,33 @@ fn intact_rock_is_left_out_for_a_rock_without_cohesion() {
     assert!(!json.contains("intact_rock"), "{json}");
 }
 
+/// The field `cdca::check_cracks` names for the default scene with these
+/// cracks (its flaw's friction and contact), after checking that
+/// `Simulation::new` refuses the scene alike; `None` when it is accepted.
+fn refused(cracks: &[&[[f64; 2]]]) -> Option<String> {
+    let mut s = bundled("specimen_single_flaw");
+    s.cracks = cracks
+        .iter()
+        .map(|p| CrackSpec {
+            points: Some(p.to_vec()),
+            ..s.cracks[0].clone()
+        })
+        .collect();
+    let scene = valid(s);
+    let checked = cdca::check_cracks(&scene).err();
+    assert_eq!(
+        checked,
+        cdca::Simulation::new(scene).err().map(|e| match e {
+            cdca::SolveError::Scene(e) => e,
+            e => panic!("{e}"),
+        })
+    );
+    checked.map(|e| match e {
+        cdca::SceneError::Invalid { field, .. } => field,
+        e => panic!("{e}"),
+    })
+}
+
 /// Cracks drawn from the boundary back to the boundary cut the specimen in
 /// two before any load; with its faces open the piece they cut off has no
 /// support, and the first factorisation met a non-positive pivot
@@ -238,29 +265,6 @@ fn intact_rock_is_left_out_for_a_rock_without_cohesion() {
 /// specimen, or two that touch without reaching a second edge, are fine.
 #[test]
 fn cracks_that_cut_the_specimen_are_refused_before_any_work() {
-    let refused = |cracks: &[&[[f64; 2]]]| {
-        let mut s = bundled("specimen_single_flaw");
-        s.cracks = cracks
-            .iter()
-            .map(|p| CrackSpec {
-                points: Some(p.to_vec()),
-                ..s.cracks[0].clone()
-            })
-            .collect();
-        let scene = valid(s);
-        let checked = cdca::check_cracks(&scene).err();
-        assert_eq!(
-            checked,
-            cdca::Simulation::new(scene).err().map(|e| match e {
-                cdca::SolveError::Scene(e) => e,
-                e => panic!("{e}"),
-            })
-        );
-        checked.map(|e| match e {
-            cdca::SceneError::Invalid { field, .. } => field,
-            e => panic!("{e}"),
-        })
-    };
     // a corner cut off (left edge to top edge), and a crack across
     assert_eq!(
         refused(&[&[[0.0, 0.026], [0.004, 0.03]]]),
@@ -280,6 +284,66 @@ fn cracks_that_cut_the_specimen_are_refused_before_any_work() {
     // an edge crack, and one touching it without reaching a second edge
     assert_eq!(refused(&[edge]), None);
     assert_eq!(refused(&[edge, &[[0.015, 0.015], [0.02, 0.02]]]), None);
+}
+
+/// A crack that meets itself (turns straight back, crosses itself, closes
+/// on itself, or comes within a thousandth of an element of itself) is
+/// refused before any work, naming the point where it does; sharp turns
+/// that never meet are fine. The first case is the random-geometry
+/// fuzzer's: 26 mm along a line and back along it 0.5 µm off, which
+/// solved and then stopped growth at step 2 with a non-positive pivot.
+#[test]
+fn a_crack_that_meets_itself_is_refused_before_any_work() {
+    let y = 0.019877;
+    let cases: [(&[[f64; 2]], Option<&str>); 7] = [
+        (
+            &[
+                [0.03, y],
+                [0.0041, y + 4.6e-7],
+                [0.0045, y + 4.6e-7],
+                [0.0067, y + 4.6e-7],
+            ],
+            Some("cracks[0].points[2]"),
+        ),
+        (
+            &[[0.01, 0.01], [0.02, 0.02], [0.02, 0.01], [0.01, 0.02]],
+            Some("cracks[0].points[3]"),
+        ),
+        // closed onto its first segment, cutting out a triangle
+        (
+            &[[0.01, 0.01], [0.02, 0.01], [0.02, 0.02], [0.015, 0.01]],
+            Some("cracks[0].points[3]"),
+        ),
+        // back to within 0.2 µm (4e-4 h) of its first segment
+        (
+            &[
+                [0.01, 0.01],
+                [0.02, 0.01],
+                [0.02, 0.015],
+                [0.015, 0.0100002],
+            ],
+            Some("cracks[0].points[3]"),
+        ),
+        // a hook turned back by 170°, a zigzag, a spiral's turns
+        (&[[0.01, 0.01], [0.02, 0.01], [0.01, 0.0118]], None),
+        (
+            &[[0.01, 0.01], [0.013, 0.013], [0.016, 0.01], [0.019, 0.013]],
+            None,
+        ),
+        (
+            &[
+                [0.01, 0.01],
+                [0.02, 0.01],
+                [0.02, 0.02],
+                [0.012, 0.02],
+                [0.012, 0.012],
+            ],
+            None,
+        ),
+    ];
+    for (k, (points, field)) in cases.iter().enumerate() {
+        assert_eq!(refused(&[points]).as_deref(), *field, "case {k}");
+    }
 }
 
 /// (K_I, K_II) of both tips of the default scene's flaw moved to run from

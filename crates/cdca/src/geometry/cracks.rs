@@ -4,7 +4,9 @@
 //! distance (positive on the left of the polyline's direction) and, for tip
 //! `k`, `ψ = (x − x_tip)·t_tip` with `t_tip` the outward tangent.
 
-use crate::geometry::plane::{P2, distance_to_segment, perp, signed_distance};
+use crate::geometry::plane::{
+    P2, cross, distance_to_segment, perp, segment_intersection, signed_distance,
+};
 use crate::scene::CrackSpec;
 
 /// What a crack end is.
@@ -99,6 +101,31 @@ impl Crack {
     /// Free tips (0, 1 or 2 of them).
     pub fn free_tips(&self) -> impl Iterator<Item = usize> + '_ {
         (0..2).filter(|&k| self.tips[k] == TipKind::Free)
+    }
+
+    /// The first point `k` at which the polyline meets itself, if it does:
+    /// segment `k − 1 → k` turns straight back along the one before it
+    /// (within a thousandth of a radian of opposite), or crosses or comes
+    /// within `tol` of a segment that is not its neighbour.
+    pub fn self_contact(&self, tol: f64) -> Option<usize> {
+        let p = &self.points;
+        for j in 2..p.len() {
+            let (d, before) = (p[j] - p[j - 1], p[j - 1] - p[j - 2]);
+            if d.dot(&before) < 0.0 && cross(d, before).abs() <= 1e-3 * d.norm() * before.norm() {
+                return Some(j);
+            }
+            for i in 1..j - 1 {
+                let (a, b, c, e) = (p[i - 1], p[i], p[j - 1], p[j]);
+                let touch = segment_intersection(a, b, c, e).is_some()
+                    || [(c, a, b), (e, a, b), (a, c, e), (b, c, e)]
+                        .iter()
+                        .any(|&(x, s0, s1)| distance_to_segment(x, s0, s1) <= tol);
+                if touch {
+                    return Some(j);
+                }
+            }
+        }
+        None
     }
 }
 

@@ -117,8 +117,9 @@ fn same_discretisation(a: &SceneFile, b: &SceneFile) -> bool {
     *a == b
 }
 
-/// Whether a scene's cracks leave the specimen in one piece, checked
-/// before any work (`cdca` runs it on every scene it reads): cracks that
+/// Whether a scene's cracks leave the specimen in one piece and none meets
+/// itself, checked before any work (`cdca` runs it on every scene it
+/// reads; see `untangled` for the second): cracks that
 /// run from the boundary back to the boundary, alone or linked
 /// ([`split_specimen`]), have failed the specimen before any load (growth
 /// ends `through` at such a split), and a piece held by crack faces alone
@@ -126,10 +127,39 @@ fn same_discretisation(a: &SceneFile, b: &SceneFile) -> bool {
 /// mid-growth (`growth.resume`) may hold a split: that run has ended.
 ///
 /// Errors name the crack (`cracks[i]`, its end points) when one alone runs
-/// from boundary to boundary, or `cracks` for a linked chain.
+/// from boundary to boundary, `cracks` for a linked chain, and the point
+/// (`cracks[i].points[k]`, or `cracks[i].arc`) where a crack meets itself.
 pub fn check_cracks(scene: &Scene) -> Result<(), SceneError> {
     let model = Model::new(scene.clone());
-    unsplit(scene, &model.initial_cracks())
+    let cracks = model.initial_cracks();
+    untangled(scene, &cracks)?;
+    unsplit(scene, &cracks)
+}
+
+/// No crack meets itself ([`Crack::self_contact`], within a thousandth of
+/// an element): its faces would have to meet themselves, and a closed loop
+/// cuts a piece free. A crack that ran 26 mm along a line and turned back
+/// along it, 0.5 µm off, solved and then stopped growth at its second step
+/// with a non-positive pivot.
+fn untangled(scene: &Scene, cracks: &[Crack]) -> Result<(), SceneError> {
+    let tol = 1e-3 * scene.element_size();
+    for (i, crack) in cracks.iter().enumerate() {
+        if let Some(k) = crack.self_contact(tol) {
+            let p = crack.points[k];
+            let field = match scene.cracks[i].arc {
+                Some(_) => format!("cracks[{i}].arc"),
+                None => format!("cracks[{i}].points[{k}]"),
+            };
+            return Err(SceneError::invalid(
+                field,
+                format!("[{}, {}]", p.x, p.y),
+                "the crack turns straight back, crosses itself or comes within a \
+                 thousandth of an element of itself here (a crack's faces cannot meet \
+                 themselves; a closed loop cuts a piece free)",
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn unsplit(scene: &Scene, cracks: &[Crack]) -> Result<(), SceneError> {
@@ -170,6 +200,7 @@ impl Simulation {
     pub fn new(scene: Scene) -> Result<Self, SolveError> {
         let model = Model::new(scene);
         let cracks = model.initial_cracks();
+        untangled(&model.scene, &cracks)?;
         unsplit(&model.scene, &cracks)?;
         let xfem = model.rediscretise(cracks.clone(), None);
         let rebuild_points = xfem.points_to_integrate();

@@ -55,14 +55,9 @@ impl SceneFile {
 
     fn validate_specimen_and_mesh(&self) -> Check {
         let s = &self.specimen;
-        for (field, v) in [
-            ("specimen.width", s.width),
-            ("specimen.height", s.height),
-            ("specimen.thickness", s.thickness),
-        ] {
-            positive(field, v)?;
-            physical(field, v)?;
-        }
+        positive_quantity("specimen.width", s.width)?;
+        positive_quantity("specimen.height", s.height)?;
+        positive_quantity("specimen.thickness", s.thickness)?;
         let m = &self.mesh;
         at_least_one("mesh.nx", m.nx)?;
         at_least_one("mesh.ny", m.ny)?;
@@ -95,10 +90,8 @@ impl SceneFile {
                 return Err(SceneError::invalid(field(""), value, reason));
             }
         }
-        non_negative(&field(".friction"), crack.friction)?;
-        physical(&field(".friction"), crack.friction)?;
-        non_negative(&field(".cohesion"), crack.cohesion)?;
-        physical(&field(".cohesion"), crack.cohesion)?;
+        non_negative_quantity(&field(".friction"), crack.friction)?;
+        non_negative_quantity(&field(".cohesion"), crack.cohesion)?;
         for (name, k) in [
             (".normal_stiffness", crack.normal_stiffness),
             (".shear_stiffness", crack.shear_stiffness),
@@ -116,14 +109,12 @@ impl SceneFile {
     /// scene found a negative pivot; up to 1e12 the solve runs, and says
     /// when its contact iteration does not settle).
     fn penalty(&self, field: &str, k: f64) -> Check {
-        positive(field, k)?;
-        physical(field, k)?;
-        let ratio = k * self.element_size() / self.material.young;
+        positive_quantity(field, k)?;
+        let (h, e) = (self.element_size(), self.material.young);
+        let ratio = k * h / e;
         let reason = format!(
-            "k h/E = {ratio:.3e} (h = {:.4e} m, E = {:.4e} Pa) is beyond 1/ε = {:.1e}: \
+            "k h/E = {ratio:.3e} (h = {h:.4e} m, E = {e:.4e} Pa) is beyond 1/ε = {:.1e}: \
              the rock's stiffness would be lost in the round-off of the joint's",
-            self.element_size(),
-            self.material.young,
             1.0 / f64::EPSILON
         );
         ensure(ratio * f64::EPSILON < 1.0, field, Num(k), reason)
@@ -196,8 +187,7 @@ impl SceneFile {
 
     fn validate_arc(&self, field: &str, arc: &ArcSpec, crack: &CrackSpec) -> Check {
         finite_point(&format!("{field}.center"), arc.center)?;
-        positive(&format!("{field}.radius"), arc.radius)?;
-        physical(&format!("{field}.radius"), arc.radius)?;
+        positive_quantity(&format!("{field}.radius"), arc.radius)?;
         finite(&format!("{field}.start_deg"), arc.start_deg)?;
         let end = format!("{field}.end_deg");
         let sweep = (finite(&end, arc.end_deg)? - arc.start_deg).abs();
@@ -232,8 +222,7 @@ impl SceneFile {
 
     fn validate_settings(&self) -> Check {
         if let Some(r0) = self.criterion.r0 {
-            positive("criterion.r0", r0)?;
-            physical("criterion.r0", r0)?;
+            positive_quantity("criterion.r0", r0)?;
         }
         let m = &self.material;
         if self.criterion.r0.is_none() && m.tensile_strength.is_none() {
@@ -249,8 +238,7 @@ impl SceneFile {
         }
         let g = &self.growth;
         if let Some(da) = g.increment {
-            positive("growth.increment", da)?;
-            physical("growth.increment", da)?;
+            positive_quantity("growth.increment", da)?;
         }
         at_least_one("growth.load_steps", g.load_steps)?;
         at_least_one("growth.max_steps", g.max_steps)?;
@@ -302,8 +290,7 @@ impl SceneFile {
 }
 
 fn validate_material(m: &Material) -> Check {
-    positive("material.young", m.young)?;
-    physical("material.young", m.young)?;
+    positive_quantity("material.young", m.young)?;
     let nu = finite("material.poisson", m.poisson)?;
     let reason = "must be below 0.5 (0.5 is incompressible: the stiffness is singular)";
     ensure(nu < 0.5, "material.poisson", Num(nu), reason)?;
@@ -314,8 +301,7 @@ fn validate_material(m: &Material) -> Check {
         Num(nu),
         "must be greater than -1",
     )?;
-    non_negative("material.cohesion", m.cohesion)?;
-    physical("material.cohesion", m.cohesion)?;
+    non_negative_quantity("material.cohesion", m.cohesion)?;
     let field = "material.friction_angle_deg";
     let phi = finite(field, m.friction_angle_deg)?;
     ensure(
@@ -324,13 +310,10 @@ fn validate_material(m: &Material) -> Check {
         Num(phi),
         "must be in [0, 90) degrees",
     )?;
-    positive("material.k_ic", m.k_ic)?;
-    physical("material.k_ic", m.k_ic)?;
-    positive("material.k_iic", m.k_iic)?;
-    physical("material.k_iic", m.k_iic)?;
+    positive_quantity("material.k_ic", m.k_ic)?;
+    positive_quantity("material.k_iic", m.k_iic)?;
     if let Some(st) = m.tensile_strength {
-        positive("material.tensile_strength", st)?;
-        physical("material.tensile_strength", st)?;
+        positive_quantity("material.tensile_strength", st)?;
     }
     Ok(())
 }
@@ -369,6 +352,18 @@ fn physical(field: &str, v: f64) -> Check {
         Num(MAX_MAGNITUDE)
     );
     ensure(ok, field, Num(v), reason)
+}
+
+/// A positive [`physical`] value.
+fn positive_quantity(field: &str, v: f64) -> Check {
+    positive(field, v)?;
+    physical(field, v)
+}
+
+/// A non-negative [`physical`] value.
+fn non_negative_quantity(field: &str, v: f64) -> Check {
+    non_negative(field, v)?;
+    physical(field, v)
 }
 
 fn non_negative(field: &str, v: f64) -> Check {

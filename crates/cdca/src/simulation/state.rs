@@ -131,9 +131,13 @@ fn same_discretisation(a: &SceneFile, b: &SceneFile) -> bool {
 /// (`cracks[i].points[k]`, or `cracks[i].arc`) where a crack meets itself.
 pub fn check_cracks(scene: &Scene) -> Result<(), SceneError> {
     let model = Model::new(scene.clone());
-    let cracks = model.initial_cracks();
-    untangled(scene, &cracks)?;
-    unsplit(scene, &cracks)
+    sound(scene, &model.initial_cracks())
+}
+
+/// The checks of [`check_cracks`] on the built `cracks`.
+fn sound(scene: &Scene, cracks: &[Crack]) -> Result<(), SceneError> {
+    untangled(scene, cracks)?;
+    unsplit(scene, cracks)
 }
 
 /// No crack meets itself ([`Crack::self_contact`], within a thousandth of
@@ -200,8 +204,7 @@ impl Simulation {
     pub fn new(scene: Scene) -> Result<Self, SolveError> {
         let model = Model::new(scene);
         let cracks = model.initial_cracks();
-        untangled(&model.scene, &cracks)?;
-        unsplit(&model.scene, &cracks)?;
+        sound(&model.scene, &cracks)?;
         let xfem = model.rediscretise(cracks.clone(), None);
         let rebuild_points = xfem.points_to_integrate();
         Self::from_parts(model, cracks, xfem, rebuild_points)

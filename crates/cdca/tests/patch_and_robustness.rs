@@ -346,6 +346,52 @@ fn a_crack_that_meets_itself_is_refused_before_any_work() {
     }
 }
 
+/// A free end whose last segment is shorter than a tenth of an element is
+/// refused before any work, naming its point: the tip takes its direction
+/// from that segment. The random-geometry fuzzer's three cases (of 400)
+/// ended in a segment of 1e-3 h turned 90°, and the stiffness was singular
+/// ("not positive definite", exit 1); it was at 1e-2 h too, and solved from
+/// 0.03 h. The same short segment at a junction end is fine (growth cuts
+/// them there), and so is a growth increment of 0.1 h but not 0.09 h.
+#[test]
+fn a_free_end_shorter_than_a_tenth_of_an_element_is_refused_before_any_work() {
+    // the default scene: 60 × 60 elements, h = 0.5 mm
+    let hook = |l: f64| -> Vec<[f64; 2]> {
+        vec![
+            [0.0108, 0.013],
+            [0.0108, 0.0175],
+            [0.0108 - l * 5e-4, 0.0175],
+        ]
+    };
+    assert_eq!(
+        refused(&[&hook(1e-3)]).as_deref(),
+        Some("cracks[0].points[2]")
+    );
+    assert_eq!(
+        refused(&[&hook(0.09)]).as_deref(),
+        Some("cracks[0].points[2]")
+    );
+    assert_eq!(refused(&[&hook(0.11)]), None);
+    let mut first: Vec<[f64; 2]> = hook(0.05);
+    first.reverse();
+    assert_eq!(refused(&[&first]).as_deref(), Some("cracks[0].points[0]"));
+    // a segment of 0.07 h ending on another crack: a junction, not a tip
+    let across: &[[f64; 2]] = &[[0.0105, 0.01], [0.0105, 0.02]];
+    let onto: &[[f64; 2]] = &[[0.015, 0.015], [0.01053, 0.01502], [0.0105, 0.015]];
+    assert_eq!(refused(&[across, onto]), None);
+    let increment = |da: f64| {
+        let mut s = bundled("specimen_single_flaw");
+        s.growth.increment = Some(da);
+        match cdca::Scene::try_from(s) {
+            Ok(_) => None,
+            Err(cdca::SceneError::Invalid { field, .. }) => Some(field),
+            Err(e) => panic!("{e}"),
+        }
+    };
+    assert_eq!(increment(0.1 * 5e-4), None);
+    assert_eq!(increment(0.09 * 5e-4).as_deref(), Some("growth.increment"));
+}
+
 /// (K_I, K_II) of both tips of the default scene's flaw moved to run from
 /// `p0` to `p1` (m), solved (converged) under the scene's load.
 fn flaw_sifs(p0: [f64; 2], p1: [f64; 2]) -> Vec<(f64, f64)> {

@@ -20,4 +20,4 @@ pub use file::{
 };
 pub use resume::Resume;
 pub use valid::Scene;
-pub use validate::MAX_ELEMENTS;
+pub use validate::{MAX_ELEMENTS, MIN_END_SEGMENT};

@@ -15,7 +15,7 @@ use crate::error::{SceneError, SolveError};
 use crate::fracture::criterion::{Circle, CriterionParams, Faces};
 use crate::geometry::cracks::{Crack, TipKind, split_specimen};
 use crate::report::{GrowthStepReport, Outcome, TipReport};
-use crate::scene::{Scene, SceneFile, SideBc};
+use crate::scene::{MIN_END_SEGMENT, Scene, SceneFile, SideBc};
 use crate::solvers::automaton::AutomatonParams;
 use crate::solvers::linear::LinearSolver;
 use crate::solvers::relaxation::ResidualSample;
@@ -117,9 +117,10 @@ fn same_discretisation(a: &SceneFile, b: &SceneFile) -> bool {
     *a == b
 }
 
-/// Whether a scene's cracks leave the specimen in one piece and none meets
-/// itself, checked before any work (`cdca` runs it on every scene it
-/// reads; see `untangled` for the second): cracks that
+/// Whether a scene's cracks leave the specimen in one piece, none meets
+/// itself and every free tip's last segment is one the mesh resolves,
+/// checked before any work (`cdca` runs it on every scene it reads; see
+/// `untangled` and `resolved_tips` for the second and third): cracks that
 /// run from the boundary back to the boundary, alone or linked
 /// ([`split_specimen`]), have failed the specimen before any load (growth
 /// ends `through` at such a split), and a piece held by crack faces alone
@@ -128,7 +129,8 @@ fn same_discretisation(a: &SceneFile, b: &SceneFile) -> bool {
 ///
 /// Errors name the crack (`cracks[i]`, its end points) when one alone runs
 /// from boundary to boundary, `cracks` for a linked chain, and the point
-/// (`cracks[i].points[k]`, or `cracks[i].arc`) where a crack meets itself.
+/// (`cracks[i].points[k]`, or `cracks[i].arc`) where a crack meets itself
+/// or ends in too short a segment.
 pub fn check_cracks(scene: &Scene) -> Result<(), SceneError> {
     let model = Model::new(scene.clone());
     sound(scene, &model.initial_cracks())
@@ -137,6 +139,7 @@ pub fn check_cracks(scene: &Scene) -> Result<(), SceneError> {
 /// The checks of [`check_cracks`] on the built `cracks`.
 fn sound(scene: &Scene, cracks: &[Crack]) -> Result<(), SceneError> {
     untangled(scene, cracks)?;
+    resolved_tips(scene, cracks)?;
     unsplit(scene, cracks)
 }
 
@@ -160,6 +163,43 @@ fn untangled(scene: &Scene, cracks: &[Crack]) -> Result<(), SceneError> {
                 "the crack turns straight back, crosses itself or comes within a \
                  thousandth of an element of itself here (a crack's faces cannot meet \
                  themselves; a closed loop cuts a piece free)",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Every free tip's last segment is at least [`MIN_END_SEGMENT`] elements
+/// long: the tip takes its direction from it. Growth never makes a shorter
+/// one (`growth.increment` has the same floor); a segment cut short at a
+/// junction or the boundary ends at no tip.
+fn resolved_tips(scene: &Scene, cracks: &[Crack]) -> Result<(), SceneError> {
+    let h = scene.element_size();
+    for (i, crack) in cracks.iter().enumerate() {
+        for k in crack.free_tips() {
+            let (n, p) = (crack.points.len(), &crack.points);
+            let (end, next, index) = if k == 0 {
+                (p[0], p[1], 0)
+            } else {
+                (p[n - 1], p[n - 2], n - 1)
+            };
+            let length = (end - next).norm();
+            if length >= MIN_END_SEGMENT * h {
+                continue;
+            }
+            let field = match scene.cracks[i].arc {
+                Some(_) => format!("cracks[{i}].arc"),
+                None => format!("cracks[{i}].points[{index}]"),
+            };
+            return Err(SceneError::invalid(
+                field,
+                format!("[{}, {}]", end.x, end.y),
+                format!(
+                    "the segment at this free end is {length:.3e} m long, less than \
+                     {MIN_END_SEGMENT} h (h = {h} m, the element size): the tip takes its \
+                     direction from it, and the mesh cannot resolve one this short \
+                     (remove the point or move it further out)"
+                ),
             ));
         }
     }

@@ -692,9 +692,10 @@ fn contact_iteration_settles_after_stick_slip_cycling() {
     assert_eq!(last.step, 29);
     assert!(last.contact.converged);
     assert_eq!((last.contact.cycling, last.contact.violating), (0, 0));
-    // the load ramp of the scene: λ = 0.8 at step 29 (± 1e-12)
+    // the load ramp of the scene: λ = 0.9 at step 29 (± 1e-12; 0.8 while
+    // a tip's interaction-integral domain could reach past a kink)
     assert!(
-        (last.load_factor - 0.8).abs() < 1e-12,
+        (last.load_factor - 0.9).abs() < 1e-12,
         "λ {}",
         last.load_factor
     );
@@ -901,7 +902,7 @@ fn first_growth_over_the_flaw_range_follows_the_closed_form() {
 /// a flaw tip) reaches at least two flaw lengths and ends within 15° of the
 /// load axis (the chord of its last flaw length), the eight flaws whose
 /// first growth misses 55–85° included. Measured (`scripts/flaw_range.sh`):
-/// wings 3.43–4.09 flaw lengths, ending 0.0–6.4° from the load axis.
+/// wings 3.85–4.15 flaw lengths, ending 0.0–5.9° from the load axis.
 #[test]
 fn the_whole_flaw_range_grows_wings_to_the_load_axis() {
     let (len, h) = (0.0035, 0.0005);
@@ -1033,10 +1034,12 @@ fn growth_ends_when_the_specimen_is_split() {
 
 /// Regression: growth that splits the specimen while other tips are still
 /// free ends `through`, with every step kept. The bundled overlapping flaws
-/// with the paper's soft joint on a 64 × 64 mesh: at step 40 the lower wing
-/// of crack 0 reaches the bottom, so crack 0 runs from the bottom to the
+/// with the paper's soft joint on a 64 × 64 mesh: at step 38 the upper wing
+/// of crack 0 reaches the top (the lower one reached the bottom at step 40
+/// while a tip's interaction-integral domain could reach past the wing's
+/// kink), so crack 0 runs from the bottom to the
 /// top and the part right of it is held in x by its crack faces alone;
-/// crack 1 still has a free tip. Once, step 41's factorisation met a
+/// crack 1 still has a free tip. Once, the next step's factorisation met a
 /// non-positive pivot (the piece's rigid motion once the faces open) and
 /// `grow_step` returned the error: the 40 steps were lost. The reference
 /// that the cut is real: a new scene drawn with the final cracks is refused
@@ -1060,20 +1063,21 @@ fn growth_that_cuts_the_specimen_apart_ends_through() {
     run(&mut sim);
     assert_eq!(sim.growth_finished(), Some(Outcome::Through));
     let history = sim.history();
-    assert_eq!(history.len(), 40, "steps kept");
+    assert_eq!(history.len(), 38, "steps kept");
     assert!(history.iter().all(|st| st.converged));
     // the cut: crack 0 from the bottom (y = 0 to 1e-12 m) to the top; the
-    // last step grew it there; crack 1 keeps a free tip
+    // last step grew it to one of them; crack 1 keeps a free tip
     let cracks = sim.cracks();
     let (first, last) = (cracks[0][0], *cracks[0].last().expect("points"));
     assert!(
         first[1].abs() < 1e-12 && (last[1] - 0.03).abs() < 1e-12,
         "{first:?} {last:?}"
     );
-    let grown = &history[39].grown;
-    assert_eq!((grown.len(), grown[0].crack, grown[0].tip), (1, 0, 0));
-    assert!(grown[0].y.abs() < 1e-12, "{}", grown[0].y);
-    assert!(history[39].tips.iter().any(|t| t.crack == 1));
+    let grown = &history[37].grown;
+    assert_eq!((grown.len(), grown[0].crack), (1, 0));
+    let y = grown[0].y;
+    assert!(y.abs() < 1e-12 || (y - 0.03).abs() < 1e-12, "{y}");
+    assert!(history[37].tips.iter().any(|t| t.crack == 1));
     // the run saved as it ended opens (its contact states hold the pieces)
     let saved = Simulation::new(sim.scene().clone()).expect("a saved run may end split");
     assert!(saved.scene().growth.resume.is_some());
@@ -1129,47 +1133,33 @@ fn grown_layout(flaws: &[([[f64; 2]; 2], f64, f64)], max_contact: Option<usize>)
     sim
 }
 
-/// A held-out layout (random layout 2 of `scripts/random_layouts.sh 40
-/// 11`: a 2 mm flaw with μ = 1.2, and a 7 mm cohesive one, 15 MPa, μ =
-/// 0.5) at step 17, when its lower wing has reached the bottom and its
-/// upper wing is 1.7 mm from the top. There the second trial (1.270) did
-/// not converge from its warm start (the first trial's contact states and
-/// displacement), nor did the three the search moved to (1.256, 1.368,
-/// 1.424): the last crept (relative change 2.3e-3) to the 200-iteration
-/// cap with 8 points slipping, where a fresh solve of the same cracks at
-/// that load finds none (86 open, 6 stuck) in 7 iterations, and the run
-/// stopped `not_converged`. The warm start is only a speed-up (every trial
-/// is proportional loading from zero, SPEC §9): a trial that does not
-/// settle from it is solved once more from a cold start. Here that
-/// converges, and the run ends `through` with every step converged and no
-/// trial stepped around; the step records the retry (`cold_trials`).
-/// (Since the outer loop's Anderson safeguard the trial that fails warm is
-/// another one, at λ 1.689; it converges cold, and λ_cr is the same.) If
-/// the warm start someday settles there, this scene no longer exercises the
-/// rule: the last assertion says so. (The stall appeared when the face
-/// pieces next to a tip got the graded rule; before, the warm start
-/// happened to settle at λ 1.278.)
+/// A held-out layout (random layout 34 of `scripts/random_layouts.sh 40
+/// 11`: a 2 mm flaw with μ = 0.8 and face cohesion 15 MPa) at step 19,
+/// when its lower wing has reached the bottom (step 8) and its upper one
+/// is 3.1 mm from the top. There the first trial (the last step's λ_cr,
+/// 3.654; λ_cr falls to 0.323 at this step) does
+/// not converge from its warm start (the last step's contact states and
+/// displacement). The warm start is only a speed-up (every trial is
+/// proportional loading from zero, SPEC §9): a trial that does not settle
+/// from it is solved once more from a cold start. Here that converges, and
+/// the run ends `through` with every step converged and no trial stepped
+/// around; the step records the retry (`cold_trials`). If the warm start
+/// someday settles there, this scene no longer exercises the rule: the
+/// last assertion says so. (The layout that exercised it before, layout 2
+/// of the same seed, settles warm since a tip's interaction-integral
+/// domain stops short of a kink; it had stalled since the face pieces next
+/// to a tip got the graded rule.)
 #[test]
 fn a_trial_that_does_not_settle_from_its_warm_start_is_solved_cold() {
     let sim = grown_layout(
-        &[
-            (
-                [
-                    [0.016_899_747_903_419_62, 0.014_672_762_064_300_345],
-                    [0.017_434_697_988_769_527, 0.012_717_042_596_484_655],
-                ],
-                1.2,
-                0.0,
-            ),
-            (
-                [
-                    [0.009_617_241_802_022_409, 0.009_076_687_121_538_966],
-                    [0.015_210_520_274_412_987, 0.013_353_958_123_482_39],
-                ],
-                0.5,
-                15e6,
-            ),
-        ],
+        &[(
+            [
+                [0.017_324_177_111_282_684, 0.012_072_301_307_311_3],
+                [0.018_936_700_572_101_426, 0.010_772_765_160_759_57],
+            ],
+            0.8,
+            15e6,
+        )],
         None,
     );
     let history = sim.history();
@@ -1189,18 +1179,19 @@ fn a_trial_that_does_not_settle_from_its_warm_start_is_solved_cold() {
 }
 
 /// A held-out layout (random layout 0 of `scripts/random_layouts.sh 40
-/// 11`: two cohesive flaws, 15 MPa, μ = 1.2 and 0.2) whose specimen comes
-/// apart at step 18. There the first trial (the last step's λ_cr, 1.233)
-/// meets the criterion at U = 2.86 and the regula falsi's next trial is far
-/// below it (0.431). Its contact iteration used to cycle to the
+/// 11`: two cohesive flaws, 15 MPa, μ = 1.2 and 0.2) as its specimen
+/// comes apart. At step 18 the first trial (the last step's λ_cr, 1.476)
+/// meets the criterion at U = 2.94 and the regula falsi's next trial is far
+/// below it (0.501). Such a trial's contact iteration used to cycle to the
 /// 200-iteration cap (63 points), and the run stopped `not_converged`,
 /// until the search learnt to move away from an unsolved trial. Since the
 /// outer loop's Anderson mixing no longer extrapolates a raised friction
-/// limit below zero, that trial converges with the default cap (in 41–60
-/// iterations); with the cap at 40 it does not, warm or cold, and the run
+/// limit below zero, it converges with the default cap (the layout grows
+/// to failure without stepping around a trial); with the cap at 40 it
+/// does not, warm or cold, and the run
 /// still exercises the rule: the search moves away from it (to the middle
 /// between it and the converged trial above), every step converges, the
-/// run ends `through` in 20 steps, and the step records the trial it
+/// run ends `through` in 19 steps, and the step records the trial it
 /// stepped around (`unsolved_trials`). If the contact iteration someday
 /// converges there within 40, the last assertion says so.
 #[test]

@@ -222,8 +222,8 @@ fn wing_chord(name: &str) -> f64 {
 /// Paths straighten as confinement and friction rise (the paper's two
 /// series): the first 20 mm of the wing from the upper tip
 /// turn far from the crack line where the plate starts in tension (k = 0.1,
-/// μ = 0.5: measured 55.4°; k = 0.2, μ = 0.32: 65.9°) and stay close to it
-/// where it starts in shear (k = 0.2, μ = 0.5: 19.0°; μ = 0.48: 17.9°),
+/// μ = 0.5: measured 57.1°; k = 0.2, μ = 0.32: 68.3°) and stay close to it
+/// where it starts in shear (k = 0.2, μ = 0.5: 20.0°; μ = 0.48: 18.9°),
 /// below 35°, every step converged.
 #[test]
 fn paths_straighten_as_confinement_and_friction_rise() {

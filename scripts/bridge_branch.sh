@@ -15,7 +15,9 @@ cd "$(dirname "$0")/.."
 cargo build --release -q -p cdca-cli
 mkdir -p bench-out/bridge_branch
 STEPS="${STEPS:-6}" ANGLES="${ANGLES:--18 0 18}" python3 - <<'PY'
-import csv, json, math, os, subprocess
+import csv, json, math, os, subprocess, sys
+sys.path.insert(0, "scripts")
+from polyline import on_polyline
 steps, angles = int(os.environ["STEPS"]), [float(a) for a in os.environ["ANGLES"].split()]
 base = json.load(open("assets/scenes/specimen_two_flaws_coplanar.json"))
 work = "bench-out/bridge_branch"
@@ -26,15 +28,6 @@ def grow(scene, name):
     # exit 1 (a step that did not converge) still prints the history
     return json.loads(subprocess.run(["./target/release/cdca", "grow", path],
                                      capture_output=True, text=True).stdout)
-
-def on_polyline(p, poly):
-    for a, b in zip(poly, poly[1:]):
-        ax, ay = b[0] - a[0], b[1] - a[1]
-        l2 = ax * ax + ay * ay
-        t = 0.0 if l2 == 0 else max(0.0, min(1.0, ((p[0] - a[0]) * ax + (p[1] - a[1]) * ay) / l2))
-        if math.dist(p, (a[0] + t * ax, a[1] + t * ay)) < 1e-7:
-            return True
-    return False
 
 lower, upper = (c["points"] for c in base["cracks"])
 mu = base["cracks"][0]["friction"]

@@ -11,22 +11,15 @@ cd "$(dirname "$0")/.."
 cargo build --release -q -p cdca-cli
 mkdir -p bench-out/pairs
 python3 - <<'PY'
-import csv, json, math, subprocess
+import csv, json, math, subprocess, sys
+sys.path.insert(0, "scripts")
+from polyline import on_polyline
 base = json.load(open("assets/scenes/specimen_two_flaws_stepped.json"))
 
 def flaw(cx, cy, deg, mu, length=0.003):
     a = math.radians(deg)
     dx, dy = 0.5 * length * math.cos(a), 0.5 * length * math.sin(a)
     return {"points": [[cx - dx, cy - dy], [cx + dx, cy + dy]], "friction": mu}
-
-def on_polyline(p, poly):
-    for a, b in zip(poly, poly[1:]):
-        ax, ay = b[0] - a[0], b[1] - a[1]
-        l2 = ax * ax + ay * ay
-        t = 0.0 if l2 == 0 else max(0.0, min(1.0, ((p[0] - a[0]) * ax + (p[1] - a[1]) * ay) / l2))
-        if math.dist(p, (a[0] + t * ax, a[1] + t * ay)) < 1e-7:
-            return True
-    return False
 
 # (layout, offset across, offset along the load (mm), angle (deg), friction)
 runs = [("stepped", 1.6, 5, 45, 0.5), ("stepped", 1.0, 5, 45, 0.5), ("stepped", 2.2, 5, 45, 0.5),

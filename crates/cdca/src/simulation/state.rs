@@ -14,6 +14,7 @@ use crate::discretisation::xfem::Xfem;
 use crate::error::{SceneError, SolveError};
 use crate::fracture::criterion::{Circle, CriterionParams, Faces};
 use crate::geometry::cracks::{Crack, TipKind, split_specimen};
+use crate::geometry::plane::P2;
 use crate::report::{GrowthStepReport, Outcome, TipReport};
 use crate::scene::{MIN_END_SEGMENT, Scene, SceneFile, SideBc};
 use crate::solvers::automaton::AutomatonParams;
@@ -152,14 +153,9 @@ fn untangled(scene: &Scene, cracks: &[Crack]) -> Result<(), SceneError> {
     let tol = 1e-3 * scene.element_size();
     for (i, crack) in cracks.iter().enumerate() {
         if let Some(k) = crack.self_contact(tol) {
-            let p = crack.points[k];
-            let field = match scene.cracks[i].arc {
-                Some(_) => format!("cracks[{i}].arc"),
-                None => format!("cracks[{i}].points[{k}]"),
-            };
             return Err(SceneError::invalid(
-                field,
-                format!("[{}, {}]", p.x, p.y),
+                point_field(scene, i, k),
+                fmt_point(crack.points[k]),
                 "the crack turns straight back, crosses itself or comes within a \
                  thousandth of an element of itself here (a crack's faces cannot meet \
                  themselves; a closed loop cuts a piece free)",
@@ -167,6 +163,19 @@ fn untangled(scene: &Scene, cracks: &[Crack]) -> Result<(), SceneError> {
         }
     }
     Ok(())
+}
+
+/// The scene field of point `k` of crack `i`'s polyline: the point itself,
+/// or the arc it was sampled from.
+fn point_field(scene: &Scene, i: usize, k: usize) -> String {
+    match scene.cracks[i].arc {
+        Some(_) => format!("cracks[{i}].arc"),
+        None => format!("cracks[{i}].points[{k}]"),
+    }
+}
+
+fn fmt_point(p: P2) -> String {
+    format!("[{}, {}]", p.x, p.y)
 }
 
 /// Every free tip's last segment is at least [`MIN_END_SEGMENT`] elements
@@ -187,13 +196,9 @@ fn resolved_tips(scene: &Scene, cracks: &[Crack]) -> Result<(), SceneError> {
             if length >= MIN_END_SEGMENT * h {
                 continue;
             }
-            let field = match scene.cracks[i].arc {
-                Some(_) => format!("cracks[{i}].arc"),
-                None => format!("cracks[{i}].points[{index}]"),
-            };
             return Err(SceneError::invalid(
-                field,
-                format!("[{}, {}]", end.x, end.y),
+                point_field(scene, i, index),
+                fmt_point(end),
                 format!(
                     "the segment at this free end is {length:.3e} m long, less than \
                      {MIN_END_SEGMENT} h (h = {h} m, the element size): the tip takes its \

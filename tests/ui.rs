@@ -265,8 +265,13 @@ fn a_mesh_too_coarse_for_the_flaw_is_refused_with_a_reason() {
     let mut h = solved_default();
     edit_scene(&mut h, |s| (s.mesh.nx, s.mesh.ny) = (12, 12));
     h.run_steps(5);
-    assert!(matches!(h.state().message(), Some(Message::Error(_))));
-    h.get_by_label_contains("`cracks[0].points`");
+    let e = error_message(&h);
+    assert!(
+        e.contains("`cracks[0].points`")
+            && e.contains("less than 2.5 element sizes (h = 0.0025 m)"),
+        "{e}"
+    );
+    // shown, not only kept
     h.get_by_label_contains("less than 2.5 element sizes (h = 0.0025 m)");
     assert!(!h.state().is_solved());
     h.get_by_label("Undo").click();

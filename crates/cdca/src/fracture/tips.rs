@@ -53,9 +53,9 @@ pub const MIN_TURN_DEG: f64 = 0.5;
 /// value on a wing one increment (3 h) past a 60° kink, and circular-arc
 /// cracks 7–11% off the closed form (2.7–8.5% short of the turns).
 pub fn domain_radius(crack: &Crack, k: usize, h: f64) -> f64 {
-    let tip = crack.tip_point(k);
     let p = &crack.points;
     let n = p.len();
+    // point i counted from the tip
     let at = |i: usize| if k == 0 { p[i] } else { p[n - 1 - i] };
     let straight = (1..n - 1)
         .find(|&i| {
@@ -64,7 +64,7 @@ pub fn domain_radius(crack: &Crack, k: usize, h: f64) -> f64 {
             cos.clamp(-1.0, 1.0).acos() > MIN_TURN_DEG.to_radians()
         })
         .map_or(at(n - 1), at);
-    (DOMAIN_RADIUS * h).min(((straight - tip).norm() - h).max(h))
+    (DOMAIN_RADIUS * h).min(((straight - at(0)).norm() - h).max(h))
 }
 
 /// Every free tip evaluated, in the order crack, tip.

@@ -65,14 +65,21 @@ impl Crack {
         }
     }
 
-    /// Outward unit tangent at tip `k`.
-    pub fn tip_dir(&self, k: usize) -> P2 {
+    /// The segment at end `k`, from its inner point to the end: `(inner,
+    /// end)`.
+    pub fn end_segment(&self, k: usize) -> (P2, P2) {
         let n = self.points.len();
         if k == 0 {
-            (self.points[0] - self.points[1]).normalize()
+            (self.points[1], self.points[0])
         } else {
-            (self.points[n - 1] - self.points[n - 2]).normalize()
+            (self.points[n - 2], self.points[n - 1])
         }
+    }
+
+    /// Outward unit tangent at tip `k`.
+    pub fn tip_dir(&self, k: usize) -> P2 {
+        let (inner, end) = self.end_segment(k);
+        (end - inner).normalize()
     }
 
     /// Signed distance φ(x) to the polyline.

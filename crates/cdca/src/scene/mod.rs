@@ -20,4 +20,5 @@ pub use file::{
 };
 pub use resume::Resume;
 pub use valid::Scene;
+pub(crate) use validate::fmt_point;
 pub use validate::{MAX_ELEMENTS, MIN_END_SEGMENT};

@@ -411,7 +411,8 @@ fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
     (b[0] - a[0]).hypot(b[1] - a[1])
 }
 
-fn fmt_point(p: [f64; 2]) -> String {
+/// A point as the scene errors show it (`[x, y]`, see [`Num`]).
+pub(crate) fn fmt_point(p: [f64; 2]) -> String {
     format!("[{}, {}]", Num(p[0]), Num(p[1]))
 }
 

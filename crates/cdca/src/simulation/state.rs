@@ -14,9 +14,8 @@ use crate::discretisation::xfem::Xfem;
 use crate::error::{SceneError, SolveError};
 use crate::fracture::criterion::{Circle, CriterionParams, Faces};
 use crate::geometry::cracks::{Crack, TipKind, split_specimen};
-use crate::geometry::plane::P2;
 use crate::report::{GrowthStepReport, Outcome, TipReport};
-use crate::scene::{MIN_END_SEGMENT, Scene, SceneFile, SideBc};
+use crate::scene::{MIN_END_SEGMENT, Scene, SceneFile, SideBc, fmt_point};
 use crate::solvers::automaton::AutomatonParams;
 use crate::solvers::linear::LinearSolver;
 use crate::solvers::relaxation::ResidualSample;
@@ -155,7 +154,7 @@ fn untangled(scene: &Scene, cracks: &[Crack]) -> Result<(), SceneError> {
         if let Some(k) = crack.self_contact(tol) {
             return Err(SceneError::invalid(
                 point_field(scene, i, k),
-                fmt_point(crack.points[k]),
+                fmt_point([crack.points[k].x, crack.points[k].y]),
                 "the crack turns straight back, crosses itself or comes within a \
                  thousandth of an element of itself here (a crack's faces cannot meet \
                  themselves; a closed loop cuts a piece free)",
@@ -174,10 +173,6 @@ fn point_field(scene: &Scene, i: usize, k: usize) -> String {
     }
 }
 
-fn fmt_point(p: P2) -> String {
-    format!("[{}, {}]", p.x, p.y)
-}
-
 /// Every free tip's last segment is at least [`MIN_END_SEGMENT`] elements
 /// long: the tip takes its direction from it. Growth never makes a shorter
 /// one (`growth.increment` has the same floor); a segment cut short at a
@@ -186,19 +181,15 @@ fn resolved_tips(scene: &Scene, cracks: &[Crack]) -> Result<(), SceneError> {
     let h = scene.element_size();
     for (i, crack) in cracks.iter().enumerate() {
         for k in crack.free_tips() {
-            let (n, p) = (crack.points.len(), &crack.points);
-            let (end, next, index) = if k == 0 {
-                (p[0], p[1], 0)
-            } else {
-                (p[n - 1], p[n - 2], n - 1)
-            };
-            let length = (end - next).norm();
+            let (inner, end) = crack.end_segment(k);
+            let length = (end - inner).norm();
             if length >= MIN_END_SEGMENT * h {
                 continue;
             }
+            let index = if k == 0 { 0 } else { crack.points.len() - 1 };
             return Err(SceneError::invalid(
                 point_field(scene, i, index),
-                fmt_point(end),
+                fmt_point([end.x, end.y]),
                 format!(
                     "the segment at this free end is {length:.3e} m long, less than \
                      {MIN_END_SEGMENT} h (h = {h} m, the element size): the tip takes its \

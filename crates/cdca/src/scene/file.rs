@@ -416,6 +416,13 @@ impl Default for SolverSpec {
     }
 }
 
+/// A direct solve has converged when its true relative residual
+/// ‖f − K u‖/‖f‖ is at most this: the contact iteration's default
+/// tolerance. A factorisation reaches about 4e-13 on the bundled scenes
+/// and 4e-10 with joint penalties of 10⁶ E/h; a singular matrix (a piece
+/// held by its crack faces alone) leaves residuals of order one.
+pub const DIRECT_TOLERANCE: f64 = 1e-8;
+
 fn one() -> f64 {
     1.0
 }

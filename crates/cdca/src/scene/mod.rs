@@ -14,9 +14,9 @@ mod valid;
 mod validate;
 
 pub use file::{
-    ArcSpec, Boundary, ContactUpdate, CrackSpec, CriterionKind, CriterionSpec, Fix, GrowthControl,
-    GrowthSpec, Material, MeshSpec, Ordering, Plane, PointSupport, Sampling, SceneFile,
-    ShearStrength, SideBc, SolverKind, SolverSpec, Specimen,
+    ArcSpec, Boundary, ContactUpdate, CrackSpec, CriterionKind, CriterionSpec, DIRECT_TOLERANCE,
+    Fix, GrowthControl, GrowthSpec, Material, MeshSpec, Ordering, Plane, PointSupport, Sampling,
+    SceneFile, ShearStrength, SideBc, SolverKind, SolverSpec, Specimen,
 };
 pub use resume::Resume;
 pub use valid::Scene;

@@ -43,9 +43,7 @@ impl Factor {
         assert!(x.is_integrated(), "{NOT_INTEGRATED}");
         let pattern = x.pattern()?;
         self.ordered = Arc::clone(pattern.ordered());
-        let o = &*self.ordered;
-        let n = x.n_free();
-        resize_spare(&mut self.a, o.lower.row_idx().len());
+        resize_spare(&mut self.a, self.ordered.lower.row_idx().len());
         self.a.fill(0.0);
         // the pattern's elements: regular ones in mesh order, then enriched
         let mut e = 0;
@@ -61,6 +59,16 @@ impl Factor {
         for b in extra {
             pattern.add(e + b.slot, b.k.as_slice(), &mut self.a);
         }
+        self.factorise()?;
+        self.blocks.clear();
+        self.blocks.extend_from_slice(extra);
+        Ok(self)
+    }
+
+    /// The numeric factorisation of the assembled values `a` into `l`.
+    fn factorise(&mut self) -> Result<(), SolveError> {
+        let o = &*self.ordered;
+        let n = o.perm.len();
         // zeroed by the factorisation
         resize_spare(&mut self.l, o.symbolic.len_val());
         let par = get_global_parallelism();
@@ -84,9 +92,7 @@ impl Factor {
                 Spec::default(),
             )
             .map_err(|e| not_pd(format!("{e:?}")))?;
-        self.blocks.clear();
-        self.blocks.extend_from_slice(extra);
-        Ok(self)
+        Ok(())
     }
 
     /// Whether this is the factor of `K` plus `blocks` on the discretisation
@@ -119,24 +125,33 @@ impl Factor {
 
     /// `‖f − K u‖ / ‖f‖` (or ‖K u‖ when f = 0) with the factorised `K`.
     pub fn relative_residual(&self, f: &[f64], u: &[f64]) -> f64 {
+        let mut r = vec![0.0; f.len()];
+        self.residual(f, u, &mut r);
+        let norm = |w: &[f64]| w.iter().map(|a| a * a).sum::<f64>().sqrt();
+        let nf = norm(f);
+        if nf > 0.0 { norm(&r) / nf } else { norm(&r) }
+    }
+
+    /// `r = f − K u` with the factorised `K`.
+    pub fn residual(&self, f: &[f64], u: &[f64], r: &mut [f64]) {
         let o = &*self.ordered;
         let (col_ptr, row_idx) = (o.lower.col_ptr(), o.lower.row_idx());
         let v: Vec<f64> = o.perm.iter().map(|&d| u[d]).collect();
-        let mut r: Vec<f64> = o.perm.iter().map(|&d| f[d]).collect();
+        let mut rp: Vec<f64> = o.perm.iter().map(|&d| f[d]).collect();
         for (c, &vc) in v.iter().enumerate() {
             let column = col_ptr[c]..col_ptr[c + 1];
             let mut sum = 0.0;
             for (&i, &a) in row_idx[column.clone()].iter().zip(&self.a[column]) {
-                r[i] -= a * vc;
+                rp[i] -= a * vc;
                 if i != c {
                     sum += a * v[i];
                 }
             }
-            r[c] -= sum;
+            rp[c] -= sum;
         }
-        let norm = |w: &[f64]| w.iter().map(|a| a * a).sum::<f64>().sqrt();
-        let nf = norm(f);
-        if nf > 0.0 { norm(&r) / nf } else { norm(&r) }
+        for (d, &i) in o.inv.iter().enumerate() {
+            r[d] = rp[i];
+        }
     }
 }
 

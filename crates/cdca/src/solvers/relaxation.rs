@@ -13,7 +13,7 @@ use web_time::Instant;
 use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::xfem::Xfem;
 use crate::error::SolveError;
-use crate::scene::{SolverKind, SolverSpec};
+use crate::scene::{DIRECT_TOLERANCE, SolverKind, SolverSpec};
 use crate::solvers::automaton::{Automaton, AutomatonParams, Progress, relative};
 use crate::solvers::direct::Factor;
 use crate::solvers::element_op::{ElementOperator, norm};
@@ -175,7 +175,7 @@ impl Relaxation {
         debug_assert!(blocks.iter().all(|b| b.slot < x.enriched.len()));
         let mut clock = Instant::now();
         for _ in 0..max_iterations {
-            if self.status.converged {
+            if self.status.finished {
                 break;
             }
             let it = self.status.iterations + 1;
@@ -184,7 +184,8 @@ impl Relaxation {
                 iterations: it,
                 residual: p.residual,
                 converged: p.converged,
-                finished: p.converged,
+                // a direct solve is done after one, converged or not
+                finished: p.converged || matches!(self.method, Method::Direct(_)),
             };
             self.change = p.change;
             self.seconds += clock.elapsed().as_secs_f64();
@@ -207,10 +208,11 @@ impl Relaxation {
                 *u = factor.solve(f)?;
                 let mut r = vec![0.0; op.n];
                 op.residual(f, u, &mut r);
+                let residual = relative(norm(&r), norm(f));
                 Ok(Progress {
-                    residual: relative(norm(&r), norm(f)),
+                    residual,
                     change: f64::INFINITY,
-                    converged: true,
+                    converged: residual <= DIRECT_TOLERANCE,
                 })
             }
             Method::Automaton(a) => a.step(op, f, u),

@@ -21,7 +21,10 @@ use cdca::solvers::linear::{DirectSolver, LinearSolver};
 /// 0.3 m plate on a 30 × 30 mesh (h = 0.01 m), rollers bottom and left,
 /// 10 MPa tension on top; the crack polyline `points` (x in m).
 fn solve(points: &[[f64; 2]]) -> Result<(bool, f64), SolveError> {
-    let pts: Vec<String> = points.iter().map(|p| format!("[{},{}]", p[0], p[1])).collect();
+    let pts: Vec<String> = points
+        .iter()
+        .map(|p| format!("[{},{}]", p[0], p[1]))
+        .collect();
     let scene = Scene::from_json(&format!(
         r#"{{"specimen":{{"width":0.3,"height":0.3}},"mesh":{{"nx":30,"ny":30}},
         "material":{{"young":4.78e9,"poisson":0.25,"plane":"stress"}},
@@ -41,7 +44,10 @@ fn solve(points: &[[f64; 2]]) -> Result<(bool, f64), SolveError> {
     ElementOperator::from_xfem(&x, &[]).residual(&f, &u, &mut r);
     let residual = norm(&r) / norm(&f);
     if info.converged {
-        assert!(residual <= DIRECT_TOLERANCE, "converged at a true residual {residual:e}");
+        assert!(
+            residual <= DIRECT_TOLERANCE,
+            "converged at a true residual {residual:e}"
+        );
     }
     Ok((info.converged, residual))
 }
@@ -82,6 +88,9 @@ fn the_same_cracks_with_a_ligament_converge() {
         let t = (b[0] - 0.015 - a[0]) / (b[0] - a[0]);
         short[n - 1] = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
         let (converged, residual) = solve(&short).expect("solves");
-        assert!(converged && residual < 1e-11, "{short:?}: residual {residual:e}");
+        assert!(
+            converged && residual < 1e-11,
+            "{short:?}: residual {residual:e}"
+        );
     }
 }

@@ -94,7 +94,7 @@ const KEPT_FACTORS: usize = 2;
 
 /// Iterative refinement steps (`u += K⁻¹ (f − K u)`) a direct solve may
 /// take to meet [`DIRECT_TOLERANCE`].
-const MAX_REFINEMENTS: usize = 3;
+pub const MAX_REFINEMENTS: usize = 3;
 
 /// Sparse Cholesky, refactorised only when the matrix changed (the
 /// symbolic factorisation is the discretisation's, computed once), and not

@@ -4,6 +4,9 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+#[path = "../../cdca/tests/support/docs_row.rs"]
+mod docs_row;
+
 const BIN: &str = env!("CARGO_BIN_EXE_cdca");
 
 /// A small valid scene; the bad cases below edit one piece of it.
@@ -665,6 +668,18 @@ fn sweep_takes_negative_values_and_shows_the_confinement_transition() {
         assert!(angle(&w[1]) <= angle(&w[0]) + 1e-9, "{}", run.stdout);
         assert!(lambda(&w[1]) > lambda(&w[0]), "{}", run.stdout);
     }
+    let steps: Vec<String> = rows
+        .iter()
+        .map(|r| format!("{:.1}° {}", angle(r), r[2]))
+        .collect();
+    docs_row::verification_row(
+        "cli",
+        "sweep_takes_negative_values_and_shows_the_confinement_transition",
+        "the same confinement series through `cdca sweep` (negative values)",
+        "40 × 40",
+        &format!("{}; λ_cr rising", steps.join(", ")),
+        "first tension > 45°, last shear < 35°, angles never rise",
+    );
 }
 
 #[test]

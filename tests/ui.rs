@@ -327,13 +327,12 @@ fn panels_show_only_what_the_scene_can_use() {
     // shear branch on the faces (c_c + K_IIC/√(2π r0))
     assert!(h.query_by_label("Shear toughness K_IIC").is_some());
     edit_scene(&mut h, |s| {
-        s.criterion.shear_strength = cdca::scene::ShearStrength::Rock;
+        s.criterion.shear_strength = Some(cdca::scene::ShearStrength::Rock);
     });
     h.run();
     assert!(h.query_by_label("Shear toughness K_IIC").is_none());
     edit_scene(&mut h, |s| {
-        s.criterion.shear_strength = cdca::scene::ShearStrength::Faces;
-        s.criterion.kind = cdca::scene::CriterionKind::Mts;
+        s.criterion = s.criterion.with_kind(cdca::scene::CriterionKind::Mts);
     });
     h.run();
     assert!(h.query_by_label("Shear toughness K_IIC").is_none());

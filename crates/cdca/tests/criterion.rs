@@ -22,7 +22,11 @@ const N: usize = 200;
 /// The tips of `scene` after one solve with the default sampling and
 /// `r0 = f h`.
 fn tips_at(mut scene: SceneFile, f: f64) -> Vec<TipReport> {
-    assert_eq!(scene.criterion.sampling, Sampling::Hybrid, "the default");
+    assert_eq!(
+        valid(scene.clone()).criterion_settings().sampling(),
+        Some(Sampling::Hybrid),
+        "the default"
+    );
     scene.criterion.r0 = Some(f / N as f64);
     let report = Simulation::new(valid(scene))
         .expect("valid")
@@ -393,7 +397,7 @@ fn williams_sampling_gives_the_sliding_crack_load_at_any_radius() {
         let lefm = lefm_wing_load(mu, k_ic);
         for a_over_r0 in [3.0, 10.0, 30.0, 100.0] {
             let scene = sliding_plate(mu, a_over_r0)
-                .edit(|s| s.criterion.sampling = Sampling::Williams)
+                .edit(|s| s.criterion.sampling = Some(Sampling::Williams))
                 .expect("valid");
             let init = cdca::initiation(&scene).expect("initiation");
             println!(

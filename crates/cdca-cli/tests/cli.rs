@@ -420,14 +420,13 @@ fn grow_prints_the_history_and_writes_matching_csv() {
     let outcome = report["outcome"].as_str().expect("outcome");
     assert!(["completed", "unstable", "through", "max_steps"].contains(&outcome));
     let steps = report["steps"].as_array().expect("steps");
-    let grown: usize = steps
+    // one row per step and free tip (one for a step without a free tip)
+    let rows: usize = steps
         .iter()
-        .map(|s| s["grown"].as_array().map_or(0, Vec::len))
+        .map(|s| s["tips"].as_array().map_or(0, Vec::len).max(1))
         .sum();
     let history = std::fs::read_to_string(csv.join("history.csv")).expect("history.csv");
-    assert!(history.starts_with(
-        "step,load_factor,crack,tip,x,y,mode,angle_deg,k1,k2,intact_rock_utilisation\n"
-    ));
+    assert!(history.starts_with(&format!("{}\n", cdca::csv::GROWTH_HISTORY_HEADER)));
     // the rock away from the flaw carries about the far field, λ·100 MPa,
     // against σ_c = 2c cos φ/(1 − sin φ) = 80.24 MPa (c = 15 MPa, φ = 49°):
     // the median 1.2% above it at the first step, and up to 7.8% above as
@@ -456,14 +455,25 @@ fn grow_prints_the_history_and_writes_matching_csv() {
         "{}",
         run.stderr
     );
-    assert_eq!(history.lines().count(), 1 + grown);
+    assert_eq!(history.lines().count(), 1 + rows);
+    // the grew column marks every grown tip once
+    let grown: usize = steps
+        .iter()
+        .map(|s| s["grown"].as_array().map_or(0, Vec::len))
+        .sum();
+    let marked = history
+        .lines()
+        .skip(1)
+        .filter(|l| l.split(',').nth(11) == Some("1"))
+        .count();
+    assert_eq!(marked, grown);
     let cracks = report["cracks"].as_array().expect("cracks");
     let vertices: usize = cracks
         .iter()
         .map(|c| c.as_array().map_or(0, Vec::len))
         .sum();
     let paths = std::fs::read_to_string(csv.join("cracks.csv")).expect("cracks.csv");
-    assert!(paths.starts_with("crack,point,x,y\n"));
+    assert!(paths.starts_with("crack,vertex,x_m,y_m\n"));
     assert_eq!(paths.lines().count(), 1 + vertices);
 }
 

@@ -16,7 +16,7 @@ mod support;
 use support::rust_files;
 
 /// The parts, bottom to top, as `lib.rs` lists them.
-const PARTS: [&str; 10] = [
+const PARTS: [&str; 11] = [
     "error",
     "scene",
     "report",
@@ -27,6 +27,7 @@ const PARTS: [&str; 10] = [
     "fracture",
     "simulation",
     "race",
+    "csv",
 ];
 
 fn src_dir() -> PathBuf {

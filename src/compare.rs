@@ -14,7 +14,7 @@
 //! [`ENERGY_FLOOR`], or at the time cap.
 
 use cdca::Scene;
-use cdca::contact::iteration::ContactParams;
+use cdca::contact::status::ContactParams;
 pub use cdca::race::Sample;
 use cdca::race::{RaceSystem, Reference};
 use cdca::scene::{Ordering, SolverKind, SolverSpec};

@@ -17,7 +17,7 @@ mod svg;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use cdca::contact::iteration::ContactParams;
+use cdca::contact::status::ContactParams;
 use cdca::discretisation::assembly::ElementBlock;
 use cdca::discretisation::xfem::Xfem;
 use cdca::race::{RaceSystem, Reference, Sample};

@@ -497,10 +497,9 @@ fn relaxation_does_not_depend_on_the_slice_size() {
 /// while that solve still moved `u` by 3.9e-4.
 #[test]
 fn converged_contact_is_a_fixed_point() {
-    use cdca::contact::iteration::{
-        ContactParams, relative_change, solve_with_contact, solve_with_contact_from,
-    };
+    use cdca::contact::iteration::{solve_with_contact, solve_with_contact_from};
     use cdca::contact::law::FaceState;
+    use cdca::contact::status::{ContactParams, relative_change};
     use cdca::discretisation::model::Model;
     use cdca::scene::Scene;
     use cdca::solvers::linear::DirectSolver;

@@ -21,8 +21,7 @@ pub struct Args {
 }
 
 pub fn run(args: &Args) -> Result<(), CliError> {
-    let scene = scene_file::load(&args.scene)?;
-    let mut sim = Simulation::new(scene)?;
+    let mut sim = scene_file::simulation(&args.scene)?;
     let (report, failed) = grow(&mut sim, |sim| sim.grow_step().map(drop));
     if let Some(dir) = &args.csv {
         write_csv(dir, &report)?;

@@ -1240,6 +1240,18 @@ fn run_until_paused(h: &mut Harness<'_, WorkbenchApp>, frames: usize) {
     );
 }
 
+/// The workbench on its default scene after Run growth ran to its end.
+fn grown_default() -> Harness<'static, WorkbenchApp> {
+    let mut h = harness(Options::default());
+    h.run_steps(5);
+    h.get_by_label("Run growth").click();
+    h.run_steps(2);
+    run_until_paused(&mut h, 20_000);
+    h.run_steps(10);
+    assert!(h.state().growth_outcome().is_some(), "growth ended");
+    h
+}
+
 /// A growth step's report without its wall time, as JSON (the floats
 /// round-trip exactly): equal strings are bitwise-equal reports.
 fn step_bits(step: &cdca::report::GrowthStepReport) -> String {
@@ -1262,14 +1274,8 @@ fn step_bits(step: &cdca::report::GrowthStepReport) -> String {
     ignore = "the solver is slow without optimisation: run with --release"
 )]
 fn the_end_of_a_growth_run_is_solved_and_shown_at_the_printed_load() {
-    let mut h = harness(Options::default());
-    h.run_steps(5);
-    h.get_by_label("Run growth").click();
-    h.run_steps(2);
-    run_until_paused(&mut h, 20_000);
-    h.run_steps(10);
+    let h = grown_default();
     let app = h.state();
-    assert!(app.growth_outcome().is_some(), "growth ended");
     assert!(app.message().is_none(), "{:?}", app.message());
 
     let scene = cdca::Scene::try_from(app.scene().clone()).expect("valid scene");
@@ -1759,15 +1765,6 @@ fn the_study_tab_offers_only_the_scenes_own_parameters() {
 )]
 fn the_workbench_and_the_cli_write_byte_identical_csv() {
     use cdca_workbench::command::Export;
-    let mut h = harness(Options::default());
-    h.run_steps(5);
-    h.get_by_label("Run growth").click();
-    h.run_steps(2);
-    run_until_paused(&mut h, 20_000);
-    h.run_steps(10);
-    let app = h.state();
-    assert!(app.growth_outcome().is_some(), "growth ended");
-
     // the `cdca` binary beside this test's directory (target/release)
     let exe = std::env::current_exe().expect("the test binary");
     let cli = exe
@@ -1780,6 +1777,8 @@ fn the_workbench_and_the_cli_write_byte_identical_csv() {
         "{} is missing: build it with cargo build --release -p cdca-cli (scripts/test.sh does)",
         cli.display()
     );
+    let h = grown_default();
+    let app = h.state();
     let dir = std::env::temp_dir().join(format!("cdca_ui_csv_{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("a temporary directory");
     let scene = dir.join("scene.json");

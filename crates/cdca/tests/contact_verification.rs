@@ -10,7 +10,7 @@ mod common;
 use cdca::report::SolveReport;
 use cdca::scene::{Plane, SceneFile, SideBc};
 use cdca::{ContactState, Simulation};
-use common::docs_row::{pct_abs, record_row, sig, verification_row};
+use common::docs_row::{pct_abs, record_row, tiny, verification_row};
 use common::*;
 
 const A: f64 = 0.05;
@@ -295,14 +295,7 @@ fn doubling_the_load_doubles_k() {
         "doubling_the_load_doubles_k",
         "doubling every load doubles K",
         "100 × 100",
-        &format!(
-            "K_II to {}",
-            if worst < 1e-12 {
-                "1e-12".to_string()
-            } else {
-                sig(worst, 1)
-            }
-        ),
+        &format!("K_II to {}", tiny(worst)),
         "1e-8 (K_II), 1e-7 (K_I)",
     );
 }

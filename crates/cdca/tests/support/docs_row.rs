@@ -64,6 +64,16 @@ pub fn sig(x: f64, digits: usize) -> String {
     format!("{x:.decimals$}")
 }
 
+/// A relative error to one significant digit, or `1e-12` below that (the
+/// round-off, which differs between machines).
+pub fn tiny(x: f64) -> String {
+    if x < 1e-12 {
+        "1e-12".to_owned()
+    } else {
+        sig(x, 1)
+    }
+}
+
 /// `x` (a ratio) as a signed percentage to `digits` significant digits
 /// (`-0.10%`).
 pub fn pct(x: f64, digits: usize) -> String {

@@ -459,7 +459,7 @@ fn visit(
 
 /// Whether the return mapping at `u` gives every free point its state, and
 /// how many frozen points break the law (see
-/// [`breaks_law`](crate::contact::iteration::breaks_law)).
+/// [`breaks_law`]).
 fn final_check(
     x: &Xfem,
     committed: &[FaceState],

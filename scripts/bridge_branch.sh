@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Would branching link the coplanar pair? (README, "Coalescence"): the
+# Would branching link the coplanar pair? (docs/fracture-model.md, "Coalescence"): the
 # bundled coplanar pair grown STEPS growth steps (default 6, λ_cr = 1.54,
 # where the faces' shear check around the inner flaw ends reaches 1), then
 # a branch of one increment (1.34 mm) drawn into the bridge from the lower

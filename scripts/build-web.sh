@@ -9,7 +9,7 @@
 # wasm-opt is not run: Debian's binaryen 108 produces output Chromium rejects.
 #
 # With rustup's wasm32 target, `trunk build --release` does the same (see the
-# README, "Browser build").
+# docs/browser.md).
 #
 # Usage: scripts/build-web.sh        (serve with:
 #        python3 -m http.server -b 127.0.0.1 -d dist 8080)

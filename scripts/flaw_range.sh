@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The whole held-out flaw range of issue 17 grown to failure (README, "The
+# The whole held-out flaw range of issue 17 grown to failure (docs/fracture-model.md, "The
 # whole range, grown to failure"): a 3.5 mm closed flaw through the default
 # specimen's centre (off the grid), at every angle β = 30–60° from the
 # horizontal in steps of 5° and every face friction μ = 0–0.6 in steps of

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Bad and awkward input on purpose (README, "Scene files"): scenes made
+# Bad and awkward input on purpose (docs/scene-files.md): scenes made
 # from the bundled ones and run through `cdca solve` (and `cdca grow`,
 # three steps), each checked for what must never happen: a panic, an exit
 # code other than 0 (trusted), 1 (did not converge, says why) or 2 (bad

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Held-out flaw pairs (README, "Coalescence"): the bundled stepped and
+# Held-out flaw pairs (docs/fracture-model.md, "Coalescence"): the bundled stepped and
 # overlapping layouts centred in the specimen, then one thing varied at a
 # time (offset across or along the load, flaw angle, friction), each grown
 # to failure with `cdca grow` (100 × 100, product defaults). Prints one row
 # per run (outcome, steps, whether every step converged, the steps at which
-# a grown tip ended on the other crack) and writes bench-out/pairs.csv.
+# a grown tip ended on the other crack) and writes bench-out/pairs.csv,
+# and the summary rows that `bash scripts/docs.sh` puts in docs/.
 # Usage: bash scripts/held_out_pairs.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -54,4 +55,22 @@ with open("bench-out/pairs.csv", "w", newline="") as f:
     w.writerow(["layout", "across_mm", "along_mm", "angle_deg", "friction", "outcome", "steps",
                 "every_step_converged", "link_steps"])
     w.writerows(rows)
+# the summary table of docs/fracture-model.md (*Coalescence*), between its
+# markers through `bash scripts/docs.sh`
+import os
+out = os.path.join(os.environ.get("CARGO_TARGET_DIR", "target"), "docs", "held-out-pairs")
+os.makedirs(out, exist_ok=True)
+for key, layout in (("1", "stepped"), ("2", "overlapping")):
+    runs = [r for r in rows if r[0] == layout]
+    firsts = sorted(int(r[8].split()[0]) for r in runs if r[8])
+    linked = f"{len(firsts)}"
+    if firsts:
+        linked += f" (first links at steps {firsts[0]}–{firsts[-1]})" if firsts[0] != firsts[-1] else f" (first link at step {firsts[0]})"
+    outcomes = {}
+    for r in runs:
+        outcomes[r[5]] = outcomes.get(r[5], 0) + 1
+    text = ", ".join(f"{n} {o}" for o, n in sorted(outcomes.items(), key=lambda x: (-x[1], x[0])))
+    with open(os.path.join(out, f"{key}-{layout}.md"), "w") as f:
+        f.write(f"| {layout} | {len(runs)} | {linked} | {sum(r[7] for r in runs)} | {text} |\n")
+print(f"wrote bench-out/pairs.csv and {out}/")
 PY

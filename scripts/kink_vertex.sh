@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The field at the kink vertices of the bundled coplanar pair (README,
+# The field at the kink vertices of the bundled coplanar pair (docs/fracture-model.md,
 # "Coalescence"): the pair grown STEPS growth steps (default 3: by then a
 # wing has left three or four of the flaws' ends) on each mesh of MESHES
 # (default "100 150 200 300" elements per side), then the criterion's

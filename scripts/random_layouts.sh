@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Random flaw layouts a user might draw (README, "Stability on purpose"):
+# Random flaw layouts a user might draw (docs/fracture-model.md, "Random layouts"):
 # 40 scenes from a fixed seed, each the default specimen with 1–3 closed
 # flaws of 2–8 mm at any angle anywhere in its middle, face friction
 # 0–1.2 and, on about a third of them, face cohesion 2–15 MPa, grown to

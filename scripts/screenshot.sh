@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the workbench under a virtual X display and saves a screenshot of the
-# whole screen (used by the README).
+# whole screen (used by the README and docs/).
 #
 #   bash scripts/screenshot.sh [SECONDS] [OUT.png] [-- WORKBENCH ARGS...]
 #

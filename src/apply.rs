@@ -278,6 +278,33 @@ impl WorkbenchApp {
         }
     }
 
+    /// The CSV text File ▸ Export writes for a table (crack paths, growth
+    /// history), the same as `cdca grow --csv` writes for the same run
+    /// (`cdca::csv`); `None` for the exports that are not such a table.
+    pub fn table_csv(&self, what: Export) -> Option<String> {
+        match what {
+            Export::CrackPaths => Some(self.crack_paths_csv()),
+            Export::History => Some(self.history_csv()),
+            _ => None,
+        }
+    }
+
+    /// The crack paths: the simulation's cracks, or the scene's before a
+    /// simulation has any.
+    fn crack_paths_csv(&self) -> String {
+        let cracks = if self.runner.view().cracks.is_empty() {
+            let h = self.scene.element_size();
+            self.scene.cracks.iter().map(|c| c.polyline(h)).collect()
+        } else {
+            self.runner.view().cracks.clone()
+        };
+        cdca::csv::crack_paths(&cracks)
+    }
+
+    fn history_csv(&self) -> String {
+        cdca::csv::growth_history(&self.runner.view().history)
+    }
+
     fn export(&mut self, ctx: &egui::Context, what: Export) {
         let stem = file_stem(&self.scene);
         let result = match what {
@@ -289,23 +316,15 @@ impl WorkbenchApp {
                 ),
                 Err(e) => Err(e),
             },
-            Export::CrackPaths => {
-                let cracks = if self.runner.view().cracks.is_empty() {
-                    let h = self.scene.element_size();
-                    self.scene.cracks.iter().map(|c| c.polyline(h)).collect()
-                } else {
-                    self.runner.view().cracks.clone()
-                };
-                io::save_dialog(
-                    &format!("{stem}_cracks.csv"),
-                    ("CSV", "csv"),
-                    export::crack_paths_csv(&cracks).as_bytes(),
-                )
-            }
+            Export::CrackPaths => io::save_dialog(
+                &format!("{stem}_cracks.csv"),
+                ("CSV", "csv"),
+                self.crack_paths_csv().as_bytes(),
+            ),
             Export::History => io::save_dialog(
                 &format!("{stem}_history.csv"),
                 ("CSV", "csv"),
-                export::history_csv(&self.runner.view().history).as_bytes(),
+                self.history_csv().as_bytes(),
             ),
             Export::Fields => match self
                 .runner

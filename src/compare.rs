@@ -13,10 +13,8 @@
 //! iterations. A run ends when it converges, when its energy error reaches
 //! [`ENERGY_FLOOR`], or at the time cap.
 
-use std::fmt::Write as _;
-
 use cdca::Scene;
-use cdca::contact::iteration::ContactParams;
+use cdca::contact::status::ContactParams;
 pub use cdca::race::Sample;
 use cdca::race::{RaceSystem, Reference};
 use cdca::scene::{Ordering, SolverKind, SolverSpec};
@@ -325,37 +323,12 @@ impl Race {
     /// The race as CSV, with the columns of `cdca bench`'s
     /// `error_vs_time.csv` (size: elements along x).
     pub fn to_csv(&self) -> String {
-        let mut s =
-            String::from("scene,size,solver,iteration,seconds,energy_error,k1_error,k2_error\n");
-        let name: String = self
-            .scene
-            .name
-            .chars()
-            .map(|c| {
-                if c == ',' || c == '"' || c == '\n' {
-                    ' '
-                } else {
-                    c
-                }
-            })
-            .collect();
-        for r in &self.runs {
-            for p in &r.samples {
-                let _ = writeln!(
-                    s,
-                    "{},{},{},{},{:e},{:e},{:e},{:e}",
-                    name,
-                    self.scene.mesh.nx,
-                    r.racer.name,
-                    p.iteration,
-                    p.seconds,
-                    p.energy,
-                    p.k1,
-                    p.k2
-                );
-            }
-        }
-        s
+        cdca::csv::race(self.runs.iter().map(|r| cdca::csv::RaceRun {
+            scene: &self.scene.name,
+            size: self.scene.mesh.nx,
+            solver: r.racer.name,
+            samples: &r.samples,
+        }))
     }
 }
 

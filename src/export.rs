@@ -1,79 +1,14 @@
-//! File contents the workbench writes: crack paths and growth history as
-//! CSV, the fields as a VTK unstructured grid (.vtu, for ParaView), the
-//! canvas as PNG. Pure functions to text or bytes; `io` does the writing.
+//! File contents the workbench writes besides the CSV tables (those come
+//! from `cdca::csv`, shared with the CLI): the fields as a VTK unstructured
+//! grid (.vtu, for ParaView), the canvas as PNG. Pure functions to text or
+//! bytes; `io` does the writing.
 
 use std::fmt::Write as _;
 
 use cdca::fracture::rock::RockStrength;
-use cdca::report::{GrowthStepReport, Mode};
 use cdca::scene::SceneFile;
 
 use crate::field::von_mises;
-
-/// `crack,vertex,x_m,y_m`, one row per polyline vertex.
-pub fn crack_paths_csv(cracks: &[Vec<[f64; 2]>]) -> String {
-    let mut out = String::from("crack,vertex,x_m,y_m\n");
-    for (i, c) in cracks.iter().enumerate() {
-        for (k, p) in c.iter().enumerate() {
-            let _ = writeln!(out, "{i},{k},{:e},{:e}", p[0], p[1]);
-        }
-    }
-    out
-}
-
-fn mode_name(mode: Mode) -> &'static str {
-    match mode {
-        Mode::Tension => "tension",
-        Mode::Shear => "shear",
-        Mode::None => "none",
-    }
-}
-
-/// One row per growth step and free tip: SIFs, the criterion's decision,
-/// whether the tip grew, contact counts, solver effort and the intact
-/// rock's utilisation of its strength.
-pub fn history_csv(history: &[GrowthStepReport]) -> String {
-    let mut out = String::from(
-        "step,load_factor,crack,tip,x_m,y_m,k1_pa_sqrt_m,k2_pa_sqrt_m,t_stress_pa,mode,angle_deg,grew,open,stick,slip,solver_iterations,seconds,converged,intact_rock_utilisation\n",
-    );
-    for s in history {
-        let tail = format!(
-            "{},{},{},{},{:e},{},{}",
-            s.contact.open,
-            s.contact.stick,
-            s.contact.slip,
-            s.solver_iterations,
-            s.seconds,
-            s.converged,
-            s.intact_rock
-                .map(|r| r.utilisation.to_string())
-                .unwrap_or_default()
-        );
-        if s.tips.is_empty() {
-            let _ = writeln!(out, "{},{},,,,,,,,,,,{tail}", s.step, s.load_factor);
-        }
-        for t in &s.tips {
-            let grew = s.grown.iter().any(|g| g.crack == t.crack && g.tip == t.tip);
-            let _ = writeln!(
-                out,
-                "{},{},{},{},{:e},{:e},{:e},{:e},{:e},{},{},{},{tail}",
-                s.step,
-                s.load_factor,
-                t.crack,
-                t.tip,
-                t.x,
-                t.y,
-                t.k1,
-                t.k2,
-                t.t_stress,
-                mode_name(t.criterion.mode),
-                t.criterion.angle_deg,
-                u8::from(grew),
-            );
-        }
-    }
-    out
-}
 
 /// The Q4 mesh with point data `displacement` (m) and cell data stresses
 /// (Pa) and the rock's strength used (–, see `RockStrength::utilisation`)
@@ -179,53 +114,6 @@ pub fn png_bytes(image: &egui::ColorImage) -> Result<Vec<u8>, String> {
 mod tests {
     use super::*;
     use crate::scenes::default_scene;
-    use cdca::report::{ContactCounts, GrownTip, TipReport};
-
-    #[test]
-    fn crack_paths_have_one_row_per_vertex() {
-        let csv = crack_paths_csv(&[
-            vec![[0.1, 0.1], [0.2, 0.2]],
-            vec![[0.0, 0.5], [0.1, 0.5], [0.2, 0.6]],
-        ]);
-        assert_eq!(csv.lines().count(), 1 + 5);
-        assert!(csv.lines().nth(3).is_some_and(|l| l.starts_with("1,0,")));
-    }
-
-    #[test]
-    fn history_marks_the_tips_that_grew() {
-        let tip = |tip| TipReport {
-            crack: 0,
-            tip,
-            ..TipReport::default()
-        };
-        let step = GrowthStepReport {
-            step: 3,
-            load_factor: 0.5,
-            grown: vec![GrownTip {
-                crack: 0,
-                tip: 1,
-                ..GrownTip::default()
-            }],
-            contact: ContactCounts {
-                open: 1,
-                stick: 2,
-                slip: 3,
-                ..ContactCounts::default()
-            },
-            tips: vec![tip(0), tip(1)],
-            ..GrowthStepReport::default()
-        };
-        let csv = history_csv(&[step]);
-        let rows: Vec<Vec<&str>> = csv
-            .lines()
-            .skip(1)
-            .map(|l| l.split(',').collect())
-            .collect();
-        assert_eq!(rows.len(), 2);
-        assert_eq!((rows[0][11], rows[1][11]), ("0", "1"));
-        let header_columns = csv.lines().next().map_or(0, |h| h.split(',').count());
-        assert!(rows.iter().all(|r| r.len() == header_columns));
-    }
 
     #[test]
     fn vtu_counts_match_the_mesh() {

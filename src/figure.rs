@@ -136,8 +136,8 @@ impl Figure {
     pub fn to_csv(&self) -> String {
         let mut out = format!(
             "series,{},{}\n",
-            quote(&self.x_label),
-            quote(&self.y_label.replace(", log", ""))
+            cdca::csv::field(&self.x_label),
+            cdca::csv::field(&self.y_label.replace(", log", ""))
         );
         for s in self.series.iter().filter(|s| s.style != Style::Gap) {
             for p in &s.points {
@@ -146,11 +146,11 @@ impl Figure {
                 } else {
                     p[1]
                 };
-                let _ = writeln!(out, "{},{},{}", quote(&s.name), p[0], y);
+                let _ = writeln!(out, "{},{},{}", cdca::csv::field(&s.name), p[0], y);
             }
         }
         for (name, x, _) in &self.vlines {
-            let _ = writeln!(out, "{},{},", quote(name), x);
+            let _ = writeln!(out, "{},{},", cdca::csv::field(name), x);
         }
         out
     }
@@ -320,15 +320,6 @@ fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
-}
-
-/// A CSV field, quoted when it holds a comma or a quote.
-fn quote(s: &str) -> String {
-    if s.contains([',', '"']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_owned()
-    }
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@
 
 use std::fmt::Write as _;
 
-use cdca::report::{GrownTip, IntactRockReport, Mode, Outcome};
+use cdca::report::{GrownTip, IntactRockReport, Outcome};
 use cdca::{Scene, Simulation};
 use web_time::Instant;
 
@@ -222,7 +222,7 @@ impl Study {
                     p.value,
                     g.crack,
                     g.tip,
-                    mode_name(g.mode),
+                    g.mode.name(),
                     g.angle_deg,
                     g.k1,
                     g.k2,
@@ -295,14 +295,6 @@ impl Task for Study {
         } else {
             Progress::Working
         })
-    }
-}
-
-pub fn mode_name(mode: Mode) -> &'static str {
-    match mode {
-        Mode::Tension => "tension",
-        Mode::Shear => "shear",
-        Mode::None => "none",
     }
 }
 

@@ -327,13 +327,12 @@ fn panels_show_only_what_the_scene_can_use() {
     // shear branch on the faces (c_c + K_IIC/√(2π r0))
     assert!(h.query_by_label("Shear toughness K_IIC").is_some());
     edit_scene(&mut h, |s| {
-        s.criterion.shear_strength = cdca::scene::ShearStrength::Rock;
+        s.criterion.shear_strength = Some(cdca::scene::ShearStrength::Rock);
     });
     h.run();
     assert!(h.query_by_label("Shear toughness K_IIC").is_none());
     edit_scene(&mut h, |s| {
-        s.criterion.shear_strength = cdca::scene::ShearStrength::Faces;
-        s.criterion.kind = cdca::scene::CriterionKind::Mts;
+        s.criterion = s.criterion.with_kind(cdca::scene::CriterionKind::Mts);
     });
     h.run();
     assert!(h.query_by_label("Shear toughness K_IIC").is_none());
@@ -1241,6 +1240,18 @@ fn run_until_paused(h: &mut Harness<'_, WorkbenchApp>, frames: usize) {
     );
 }
 
+/// The workbench on its default scene after Run growth ran to its end.
+fn grown_default() -> Harness<'static, WorkbenchApp> {
+    let mut h = harness(Options::default());
+    h.run_steps(5);
+    h.get_by_label("Run growth").click();
+    h.run_steps(2);
+    run_until_paused(&mut h, 20_000);
+    h.run_steps(10);
+    assert!(h.state().growth_outcome().is_some(), "growth ended");
+    h
+}
+
 /// A growth step's report without its wall time, as JSON (the floats
 /// round-trip exactly): equal strings are bitwise-equal reports.
 fn step_bits(step: &cdca::report::GrowthStepReport) -> String {
@@ -1263,14 +1274,8 @@ fn step_bits(step: &cdca::report::GrowthStepReport) -> String {
     ignore = "the solver is slow without optimisation: run with --release"
 )]
 fn the_end_of_a_growth_run_is_solved_and_shown_at_the_printed_load() {
-    let mut h = harness(Options::default());
-    h.run_steps(5);
-    h.get_by_label("Run growth").click();
-    h.run_steps(2);
-    run_until_paused(&mut h, 20_000);
-    h.run_steps(10);
+    let h = grown_default();
     let app = h.state();
-    assert!(app.growth_outcome().is_some(), "growth ended");
     assert!(app.message().is_none(), "{:?}", app.message());
 
     let scene = cdca::Scene::try_from(app.scene().clone()).expect("valid scene");
@@ -1746,4 +1751,60 @@ fn the_study_tab_offers_only_the_scenes_own_parameters() {
     h.run();
     open_choices(&mut h);
     assert!(h.query_by_label("boundary.right.normal").is_some());
+}
+
+/// The CLI and the workbench write the same CSV tables for the same run:
+/// Run growth on the default scene to its end, then File ▸ Export's crack
+/// paths and growth history (`WorkbenchApp::table_csv`) against the files
+/// `cdca grow SCENE --csv DIR` writes for that scene, byte for byte (both
+/// go through `cdca::csv`; neither table holds a wall time).
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn the_workbench_and_the_cli_write_byte_identical_csv() {
+    use cdca_workbench::command::Export;
+    // the `cdca` binary beside this test's directory (target/release)
+    let exe = std::env::current_exe().expect("the test binary");
+    let cli = exe
+        .ancestors()
+        .nth(2)
+        .expect("target/<profile>")
+        .join("cdca");
+    assert!(
+        cli.exists(),
+        "{} is missing: build it with cargo build --release -p cdca-cli (scripts/test.sh does)",
+        cli.display()
+    );
+    let h = grown_default();
+    let app = h.state();
+    let dir = std::env::temp_dir().join(format!("cdca_ui_csv_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary directory");
+    let scene = dir.join("scene.json");
+    std::fs::write(&scene, serde_json::to_string(app.scene()).expect("JSON")).expect("written");
+    let out = std::process::Command::new(&cli)
+        .args(["grow", &scene.to_string_lossy(), "--csv"])
+        .arg(&dir)
+        .output()
+        .expect("cdca runs");
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for (file, what) in [
+        ("history.csv", Export::History),
+        ("cracks.csv", Export::CrackPaths),
+    ] {
+        let cli_text = std::fs::read_to_string(dir.join(file)).expect("the CLI's CSV");
+        let app_text = app.table_csv(what).expect("a table export");
+        assert!(cli_text.lines().count() > 2, "{file}: {cli_text}");
+        assert!(
+            cli_text == app_text,
+            "{file} differs:\nCLI:\n{cli_text}\napp:\n{app_text}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -82,9 +82,11 @@ fn specimen_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
 }
 
 fn material_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
-    let comprehensive = s.criterion.kind == CriterionKind::Comprehensive;
+    // which settings the criterion reads: the solver crate's one rule
+    let comprehensive = s.criterion.kind.fields().shear_strength;
     // K_IIC sets the faces' shear strength on r0, c_c + K_IIC/√(2π r0)
-    let shear_toughness = comprehensive && s.criterion.shear_strength == ShearStrength::Faces;
+    let shear_toughness =
+        comprehensive && s.criterion.shear_strength.unwrap_or_default() == ShearStrength::Faces;
     CollapsingHeader::new("Material")
         .default_open(true)
         .show(ui, |ui| {
@@ -366,10 +368,16 @@ fn criterion_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
                     (CriterionKind::MtsT, "MTS with T-stress"),
                 ],
             );
+            // a new kind keeps only the settings it reads (the scene would
+            // refuse the others); the rows below show only those
+            *c = c.with_kind(c.kind);
+            let fields = c.kind.fields();
             Grid::new("criterion").num_columns(2).show(ui, |ui| {
                 let (auto_r0, _) = radius_and_strength(None, &s.material);
-                optional_row(ui, t, "Radius r0", &mut c.r0, auto_r0, MM, "mm");
-                if c.kind == CriterionKind::Comprehensive {
+                if fields.r0 {
+                    optional_row(ui, t, "Radius r0", &mut c.r0, auto_r0, MM, "mm");
+                }
+                if fields.sampling {
                     let without = Material {
                         tensile_strength: None,
                         ..s.material.clone()
@@ -386,7 +394,7 @@ fn criterion_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
                     );
                 }
             });
-            if c.r0.is_none() {
+            if fields.r0 && c.r0.is_none() {
                 ui.weak(
                     "auto r0: the process zone above, or a/5π on a crack of \
                      half-length a shorter than 5π times it (σ_t then rises so \
@@ -394,26 +402,36 @@ fn criterion_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
                      each tip's r0",
                 );
             }
-            if c.kind == CriterionKind::Comprehensive {
+            if fields.sampling {
+                let mut sampling = c.sampling.unwrap_or_default();
                 choice(
                     ui,
                     "Sampling",
-                    &mut c.sampling,
+                    &mut sampling,
                     &[
                         (Sampling::Hybrid, "K-field + face stress"),
                         (Sampling::Field, "computed field"),
                         (Sampling::Williams, "Williams expansion"),
                     ],
                 );
+                if sampling != c.sampling.unwrap_or_default() {
+                    c.sampling = Some(sampling);
+                }
+            }
+            if fields.shear_strength {
+                let mut shear = c.shear_strength.unwrap_or_default();
                 choice(
                     ui,
                     "Shear strength",
-                    &mut c.shear_strength,
+                    &mut shear,
                     &[
                         (ShearStrength::Faces, "faces' μ, c + K_IIC"),
                         (ShearStrength::Rock, "rock's φ, c"),
                     ],
                 );
+                if shear != c.shear_strength.unwrap_or_default() {
+                    c.shear_strength = Some(shear);
+                }
             }
         });
 }

@@ -4,7 +4,6 @@
 
 use cdca::CriterionCurve;
 use cdca::report::{Mode, TipReport};
-use cdca::scene::CriterionKind;
 use cdca::scene::SceneFile;
 use egui::{Color32, Grid, Ui};
 use egui_plot::{Line, LineStyle, Plot, PlotPoints};
@@ -124,7 +123,8 @@ fn circle(radius: f64) -> PlotPoints<'static> {
 }
 
 fn polar_plot_ui(ui: &mut Ui, scene: &SceneFile, tip: &TipReport, c: &CriterionCurve) {
-    let comprehensive = scene.criterion.kind == CriterionKind::Comprehensive;
+    // a criterion with a shear branch (the solver crate says which)
+    let comprehensive = scene.criterion.kind.fields().shear_strength;
     let tau_abs: Vec<f64> = c.tau_rt.iter().map(|t| t.abs()).collect();
     // empty where the shear branch does not apply (open faces at the tip)
     let tau_limit: Vec<f64> = c

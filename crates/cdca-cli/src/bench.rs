@@ -17,7 +17,7 @@ mod svg;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use cdca::contact::iteration::ContactParams;
+use cdca::contact::status::ContactParams;
 use cdca::discretisation::assembly::ElementBlock;
 use cdca::discretisation::xfem::Xfem;
 use cdca::race::{RaceSystem, Reference, Sample};
@@ -251,16 +251,10 @@ fn table(runs: &[Run]) -> String {
 }
 
 fn to_csv(runs: &[Run]) -> String {
-    let mut s =
-        String::from("scene,size,solver,iteration,seconds,energy_error,k1_error,k2_error\n");
-    for r in runs {
-        for p in &r.samples {
-            let _ = writeln!(
-                s,
-                "{},{},{},{},{:e},{:e},{:e},{:e}",
-                r.scene, r.size, r.solver, p.iteration, p.seconds, p.energy, p.k1, p.k2
-            );
-        }
-    }
-    s
+    cdca::csv::race(runs.iter().map(|r| cdca::csv::RaceRun {
+        scene: r.scene,
+        size: r.size,
+        solver: r.solver,
+        samples: &r.samples,
+    }))
 }

@@ -2,10 +2,9 @@
 //! prints the `GrowReport` as JSON; with `--csv` also writes the history and
 //! the crack paths as CSV.
 
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use cdca::report::{GrowReport, GrowthStepReport, Mode, Outcome};
+use cdca::report::{GrowReport, Outcome};
 use cdca::{Simulation, SolveError};
 
 use crate::error::CliError;
@@ -22,8 +21,7 @@ pub struct Args {
 }
 
 pub fn run(args: &Args) -> Result<(), CliError> {
-    let scene = scene_file::load(&args.scene)?;
-    let mut sim = Simulation::new(scene)?;
+    let mut sim = scene_file::simulation(&args.scene)?;
     let (report, failed) = grow(&mut sim, |sim| sim.grow_step().map(drop));
     if let Some(dir) = &args.csv {
         write_csv(dir, &report)?;
@@ -111,8 +109,8 @@ fn write_csv(dir: &Path, report: &GrowReport) -> Result<(), CliError> {
     };
     std::fs::create_dir_all(dir).map_err(|e| failed(dir, e))?;
     for (name, text) in [
-        ("history.csv", history_csv(&report.steps)),
-        ("cracks.csv", cracks_csv(&report.cracks)),
+        ("history.csv", cdca::csv::growth_history(&report.steps)),
+        ("cracks.csv", cdca::csv::crack_paths(&report.cracks)),
     ] {
         let path = dir.join(name);
         std::fs::write(&path, text).map_err(|e| failed(&path, e))?;
@@ -120,87 +118,10 @@ fn write_csv(dir: &Path, report: &GrowReport) -> Result<(), CliError> {
     Ok(())
 }
 
-/// One row per grown tip per step.
-fn history_csv(steps: &[GrowthStepReport]) -> String {
-    let mut csv = String::from(
-        "step,load_factor,crack,tip,x,y,mode,angle_deg,k1,k2,intact_rock_utilisation\n",
-    );
-    for step in steps {
-        for g in &step.grown {
-            let mode = match g.mode {
-                Mode::Tension => "tension",
-                Mode::Shear => "shear",
-                Mode::None => "none",
-            };
-            let _ = writeln!(
-                csv,
-                "{},{},{},{},{},{},{mode},{},{},{},{}",
-                step.step,
-                step.load_factor,
-                g.crack,
-                g.tip,
-                g.x,
-                g.y,
-                g.angle_deg,
-                g.k1,
-                g.k2,
-                step.intact_rock
-                    .map(|r| r.utilisation.to_string())
-                    .unwrap_or_default()
-            );
-        }
-    }
-    csv
-}
-
-/// One row per crack vertex.
-fn cracks_csv(cracks: &[Vec<[f64; 2]>]) -> String {
-    let mut csv = String::from("crack,point,x,y\n");
-    for (c, points) in cracks.iter().enumerate() {
-        for (k, [x, y]) in points.iter().enumerate() {
-            let _ = writeln!(csv, "{c},{k},{x},{y}");
-        }
-    }
-    csv
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use cdca::report::GrownTip;
-
-    #[test]
-    fn history_has_one_row_per_grown_tip() {
-        let tip = |crack, tip, mode| GrownTip {
-            crack,
-            tip,
-            x: 0.125,
-            y: 0.5,
-            mode,
-            angle_deg: -70.5,
-            k1: 1.5e6,
-            k2: -2e5,
-        };
-        let steps = [
-            GrowthStepReport {
-                step: 0,
-                load_factor: 0.1,
-                ..Default::default()
-            },
-            GrowthStepReport {
-                step: 1,
-                load_factor: 0.2,
-                grown: vec![tip(0, 1, Mode::Tension), tip(1, 0, Mode::Shear)],
-                ..Default::default()
-            },
-        ];
-        assert_eq!(
-            history_csv(&steps),
-            "step,load_factor,crack,tip,x,y,mode,angle_deg,k1,k2,intact_rock_utilisation\n\
-             1,0.2,0,1,0.125,0.5,tension,-70.5,1500000,-200000,\n\
-             1,0.2,1,0,0.125,0.5,shear,-70.5,1500000,-200000,\n"
-        );
-    }
+    use cdca::report::GrowthStepReport;
 
     /// A step that fails ends growth with the steps before it in the
     /// report: the first two steps of the bundled single flaw (40 × 40),
@@ -264,14 +185,5 @@ mod tests {
         // a run that ends normally has no `error` field
         let json = serde_json::to_value(&reference).expect("JSON");
         assert!(json.get("error").is_none());
-    }
-
-    #[test]
-    fn cracks_list_every_vertex() {
-        let cracks = vec![vec![[0.0, 1.0], [0.5, 1.25]], vec![[0.1, 0.2]]];
-        assert_eq!(
-            cracks_csv(&cracks),
-            "crack,point,x,y\n0,0,0,1\n0,1,0.5,1.25\n1,0,0.1,0.2\n"
-        );
     }
 }

@@ -3,8 +3,6 @@
 
 use std::path::PathBuf;
 
-use cdca::Simulation;
-
 use crate::error::CliError;
 use crate::{output, scene_file};
 
@@ -15,9 +13,8 @@ pub struct Args {
 }
 
 pub fn run(args: &Args) -> Result<(), CliError> {
-    // The scene is validated here, before the simulation builds anything.
-    let scene = scene_file::load(&args.scene)?;
-    let mut sim = Simulation::new(scene)?;
+    // The scene is validated here, before any solve.
+    let mut sim = scene_file::simulation(&args.scene)?;
     sim.set_load_factor(1.0);
     let report = sim.solve()?;
     output::print_json(&report)?;

@@ -5,8 +5,6 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use cdca::report::Mode;
-
 use crate::error::CliError;
 use crate::scene_file;
 
@@ -49,11 +47,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let mut failed = Vec::new();
     for (v, s) in args.values.iter().zip(&scenes) {
         let i = cdca::initiation(s)?;
-        let mode = match i.mode {
-            Mode::Tension => "tension",
-            Mode::Shear => "shear",
-            Mode::None => "none",
-        };
+        let mode = i.mode.name();
         let _ = writeln!(
             csv,
             "{v},{},{mode},{},{},{},{}",

@@ -4,6 +4,9 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+#[path = "../../cdca/tests/support/docs_row.rs"]
+mod docs_row;
+
 const BIN: &str = env!("CARGO_BIN_EXE_cdca");
 
 /// A small valid scene; the bad cases below edit one piece of it.
@@ -417,14 +420,13 @@ fn grow_prints_the_history_and_writes_matching_csv() {
     let outcome = report["outcome"].as_str().expect("outcome");
     assert!(["completed", "unstable", "through", "max_steps"].contains(&outcome));
     let steps = report["steps"].as_array().expect("steps");
-    let grown: usize = steps
+    // one row per step and free tip (one for a step without a free tip)
+    let rows: usize = steps
         .iter()
-        .map(|s| s["grown"].as_array().map_or(0, Vec::len))
+        .map(|s| s["tips"].as_array().map_or(0, Vec::len).max(1))
         .sum();
     let history = std::fs::read_to_string(csv.join("history.csv")).expect("history.csv");
-    assert!(history.starts_with(
-        "step,load_factor,crack,tip,x,y,mode,angle_deg,k1,k2,intact_rock_utilisation\n"
-    ));
+    assert!(history.starts_with(&format!("{}\n", cdca::csv::GROWTH_HISTORY_HEADER)));
     // the rock away from the flaw carries about the far field, λ·100 MPa,
     // against σ_c = 2c cos φ/(1 − sin φ) = 80.24 MPa (c = 15 MPa, φ = 49°):
     // the median 1.2% above it at the first step, and up to 7.8% above as
@@ -453,14 +455,25 @@ fn grow_prints_the_history_and_writes_matching_csv() {
         "{}",
         run.stderr
     );
-    assert_eq!(history.lines().count(), 1 + grown);
+    assert_eq!(history.lines().count(), 1 + rows);
+    // the grew column marks every grown tip once
+    let grown: usize = steps
+        .iter()
+        .map(|s| s["grown"].as_array().map_or(0, Vec::len))
+        .sum();
+    let marked = history
+        .lines()
+        .skip(1)
+        .filter(|l| l.split(',').nth(11) == Some("1"))
+        .count();
+    assert_eq!(marked, grown);
     let cracks = report["cracks"].as_array().expect("cracks");
     let vertices: usize = cracks
         .iter()
         .map(|c| c.as_array().map_or(0, Vec::len))
         .sum();
     let paths = std::fs::read_to_string(csv.join("cracks.csv")).expect("cracks.csv");
-    assert!(paths.starts_with("crack,point,x,y\n"));
+    assert!(paths.starts_with("crack,vertex,x_m,y_m\n"));
     assert_eq!(paths.lines().count(), 1 + vertices);
 }
 
@@ -665,6 +678,18 @@ fn sweep_takes_negative_values_and_shows_the_confinement_transition() {
         assert!(angle(&w[1]) <= angle(&w[0]) + 1e-9, "{}", run.stdout);
         assert!(lambda(&w[1]) > lambda(&w[0]), "{}", run.stdout);
     }
+    let steps: Vec<String> = rows
+        .iter()
+        .map(|r| format!("{:.1}° {}", angle(r), r[2]))
+        .collect();
+    docs_row::verification_row(
+        "cli",
+        "sweep_takes_negative_values_and_shows_the_confinement_transition",
+        "the same confinement series through `cdca sweep` (negative values)",
+        "40 × 40",
+        &format!("{}; λ_cr rising", steps.join(", ")),
+        "first tension > 45°, last shear < 35°, angles never rise",
+    );
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! The criterion's two checks on circles around each drawn crack's ends
 //! after a few growth steps. Where a wing has left an end, that end is a
 //! kink vertex: where a secondary (shear) crack into a rock bridge would
-//! start, the branching that coplanar flaws need to link (README, *Growth
+//! start, the branching that coplanar flaws need to link (docs/fracture-model.md, *Growth
 //! to failure*). Used by `scripts/kink_vertex.sh`.
 //!
 //! `kink_vertex SCENE STEPS R_MM...` grows STEPS steps under the scene's

@@ -19,8 +19,10 @@
 //! | [`fracture`] | SIFs, criteria, tip evaluation, growth geometry (§7–9) |
 //! | [`Simulation`] | the facade: the paper's steps on one scene (§9) |
 //! | [`race`] | error against run time of any solver, for benchmarks |
+//! | [`csv`] | the report tables as CSV, one writer each, for the CLI and the workbench |
 
 pub mod contact;
+pub mod csv;
 pub mod discretisation;
 pub mod error;
 pub mod fracture;

@@ -5,8 +5,9 @@
 //!
 //! Uses the discretisation, the solvers, the contact law and the SIFs.
 
-use crate::contact::iteration::{ContactParams, solve_with_contact};
+use crate::contact::iteration::solve_with_contact;
 use crate::contact::law::{FaceState, contact_system, gaps, update_point};
+use crate::contact::status::ContactParams;
 use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::loads::traction_forces;
 use crate::discretisation::model::Model;

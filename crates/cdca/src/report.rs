@@ -129,6 +129,18 @@ pub enum Mode {
     None,
 }
 
+impl Mode {
+    /// The name reports, CSV tables and the workbench spell it with
+    /// (`"tension"`, `"shear"`, `"none"`, as serialised).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Tension => "tension",
+            Self::Shear => "shear",
+            Self::None => "none",
+        }
+    }
+}
+
 /// The criterion's decision at a tip (SPEC §8).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct CriterionReport {

@@ -10,6 +10,7 @@ mod common;
 use cdca::report::SolveReport;
 use cdca::scene::{Plane, SceneFile, SideBc};
 use cdca::{ContactState, Simulation};
+use common::docs_row::{pct_abs, record_row, tiny, verification_row};
 use common::*;
 
 const A: f64 = 0.05;
@@ -82,6 +83,10 @@ fn closed_crack_k2_table() {
     cases.push((0.2, 0.83));
     cases.push((0.0, 1.2));
     println!("   k     μ   K_II/(τ√πa)  exact   error   K_I/(σn√πa)  contact");
+    // sliding: the K_II error range and the largest |K_I|/(σ_n√πa); stuck:
+    // the largest |K_II|/(τ√πa)
+    let (mut slide_lo, mut slide_hi, mut k1_worst, mut stuck_worst) =
+        (f64::INFINITY, 0.0f64, 0.0f64, 0.0f64);
     for (k, mu) in cases {
         let sticks = mu >= (1.0 - k) / (1.0 + k);
         let r = solve(biaxial_on(
@@ -110,6 +115,13 @@ fn closed_crack_k2_table() {
                 r.contact.stick,
                 r.contact.slip
             );
+            if exact > 0.0 {
+                slide_lo = slide_lo.min(err);
+                slide_hi = slide_hi.max(err);
+                k1_worst = k1_worst.max(t.k1.abs() / (sn * root));
+            } else {
+                stuck_worst = stuck_worst.max(err);
+            }
             let tol = if exact > 0.0 { 0.03 } else { 0.02 };
             assert!(err < tol, "k {k} μ {mu}: K_II {:.4e} vs {exact:.4e}", t.k2);
             assert!(
@@ -122,6 +134,36 @@ fn closed_crack_k2_table() {
             assert_eq!(r.contact.slip, 0, "a sticking crack has no slip point");
         }
     }
+    record_row(
+        "verification",
+        "contact_verification-closed_crack_k2_table-1",
+        &[
+            "closed 45° crack, biaxial compression, k ∈ {0, 0.1, 0.2} × μ ∈ {0, 0.2, 0.32, 0.5} ((τ − μσ_n)√πa)",
+            "`closed_crack_k2_table`",
+            "100 × 100",
+            &format!(
+                "K_II within {}–{}, |K_I| ≤ {} of σ_n√πa",
+                pct_abs(slide_lo, 2),
+                pct_abs(slide_hi, 2),
+                pct_abs(k1_worst, 2)
+            ),
+            "3%, 2%",
+        ],
+    );
+    record_row(
+        "verification",
+        "contact_verification-closed_crack_k2_table-2",
+        &[
+            "sticking 45° crack (μ ≥ (1−k)/(1+k))",
+            "`closed_crack_k2_table`",
+            "160 × 160",
+            &format!(
+                "|K_II| ≤ {} of τ√πa (elastic pre-slip τ/k_T)",
+                pct_abs(stuck_worst, 2)
+            ),
+            "2%",
+        ],
+    );
 }
 
 /// Face cohesion c_c lowers K_II by `c_c√(πa)` (within 3%).
@@ -130,11 +172,21 @@ fn face_cohesion_lowers_k2() {
     let (p, k, mu, c) = (10e6, 0.1, 0.2, 1e6);
     let without = solve(biaxial(k, mu, 0.0, None, p));
     let with = solve(biaxial(k, mu, c, None, p));
+    let mut worst: f64 = 0.0;
     for (a, b) in without.tips.iter().zip(&with.tips) {
         let drop = a.k2.abs() - b.k2.abs();
         assert!(rel(drop, c * (PI * A).sqrt()) < 0.03, "drop {drop:.4e}");
         assert!(rel(b.k2.abs(), k2_exact(k, mu, c, p)) < 0.03);
+        worst = worst.max(rel(drop, c * (PI * A).sqrt()));
     }
+    verification_row(
+        "contact_verification",
+        "face_cohesion_lowers_k2",
+        "face cohesion c_c (K_II drops by c_c√πa)",
+        "100 × 100",
+        &format!("within {}", pct_abs(worst, 2)),
+        "3%",
+    );
 }
 
 /// The slip of a frictionless sliding crack follows the elliptical profile
@@ -147,6 +199,7 @@ fn slip_profile_is_elliptical() {
     assert!(r.converged() && r.contact.cycling == 0, "{:?}", r.contact);
     let (tau, _) = resolved(0.0, p);
     let mut checked = 0;
+    let mut worst: f64 = 0.0;
     for cp in sim.contact_points() {
         let s = ((cp.x - 0.5 - 1e-4).powi(2) + (cp.y - 0.5).powi(2)).sqrt();
         if s > 0.7 * A {
@@ -158,9 +211,18 @@ fn slip_profile_is_elliptical() {
             "s = {s:.4}: slip {:.4e} vs {exact:.4e}",
             cp.slip
         );
+        worst = worst.max(rel(cp.slip.abs(), exact));
         checked += 1;
     }
     assert!(checked >= 6, "only {checked} points checked");
+    verification_row(
+        "contact_verification",
+        "slip_profile_is_elliptical",
+        "slip profile ∝ √(a² − s²)",
+        "100 × 100",
+        &format!("within {} for |s| ≤ 0.7a", pct_abs(worst, 2)),
+        "5%",
+    );
 }
 
 /// An open crack in tension with contact switched on: every point open,
@@ -202,6 +264,14 @@ fn open_crack_costs_nothing_and_matches_no_contact() {
             "{t:?} vs {plain:?}"
         );
     }
+    verification_row(
+        "contact_verification",
+        "open_crack_costs_nothing_and_matches_no_contact",
+        "open crack in tension with contact on",
+        "60 × 60",
+        &format!("{} contact iteration, K identical", r.contact.iterations),
+        "1e-10",
+    );
 }
 
 /// Doubling every load doubles K to 1e-8 (friction, no cohesion: the
@@ -210,7 +280,9 @@ fn open_crack_costs_nothing_and_matches_no_contact() {
 fn doubling_the_load_doubles_k() {
     let a = solve(biaxial(0.1, 0.32, 0.0, None, 10e6));
     let b = solve(biaxial(0.1, 0.32, 0.0, None, 20e6));
+    let mut worst: f64 = 0.0;
     for (x, y) in a.tips.iter().zip(&b.tips) {
+        worst = worst.max(rel(y.k2, 2.0 * x.k2));
         assert!(
             rel(y.k2, 2.0 * x.k2) < 1e-8 && rel(y.k1, 2.0 * x.k1) < 1e-7,
             "{} {}",
@@ -218,6 +290,14 @@ fn doubling_the_load_doubles_k() {
             y.k2
         );
     }
+    verification_row(
+        "contact_verification",
+        "doubling_the_load_doubles_k",
+        "doubling every load doubles K",
+        "100 × 100",
+        &format!("K_II to {}", tiny(worst)),
+        "1e-8 (K_II), 1e-7 (K_I)",
+    );
 }
 
 fn finite(r: &SolveReport) -> bool {
@@ -238,6 +318,7 @@ fn finite(r: &SolveReport) -> bool {
 #[test]
 fn stiff_and_extreme_cases_end_cleanly() {
     println!("k_N h/E      μ       P [Pa]   status     it  cyc   K_II error");
+    let (mut slide_lo, mut slide_hi, mut stuck_worst) = (f64::INFINITY, 0.0f64, 0.0f64);
     for alpha in [1.0, 1e2, 1e4, 1e6] {
         for mu in [0.0, 0.32, 10.0] {
             for p in [1.0, 10e6, 1e9] {
@@ -267,12 +348,31 @@ fn stiff_and_extreme_cases_end_cleanly() {
                 assert!(r.converged(), "{case}: {:?}", r.failure());
                 assert_eq!(r.contact.cycling, 0, "{case}: cycling points");
                 if alpha >= 1e2 {
+                    if exact > 0.0 {
+                        slide_lo = slide_lo.min(err);
+                        slide_hi = slide_hi.max(err);
+                    } else {
+                        stuck_worst = stuck_worst.max(err);
+                    }
                     let bound = if exact > 0.0 { 0.005 } else { 0.03 };
                     assert!(err < bound, "{case}: K_II error {err:.4} above {bound}");
                 }
             }
         }
     }
+    verification_row(
+        "contact_verification",
+        "stiff_and_extreme_cases_end_cleanly",
+        "k_N h/E = 1…1e6, μ = 0…10, loads 1 Pa…1 GPa",
+        "100 × 100",
+        &format!(
+            "every run converged, 0 cycling; sliding K_II error {}–{}, stuck |K_II| ≤ {} of τ√πa for k_N h/E ≥ 100",
+            pct_abs(slide_lo, 2),
+            pct_abs(slide_hi, 2),
+            pct_abs(stuck_worst, 2)
+        ),
+        "converged; 0.5% / 3%",
+    );
 }
 
 /// A case built on the stick/slip threshold (μ = (1−k)/(1+k), τ = μσ_n)
@@ -305,6 +405,22 @@ fn threshold_case_terminates() {
     );
     let states: Vec<ContactState> = sim.contact_points().iter().map(|c| c.state).collect();
     assert!(states.iter().all(|s| *s != ContactState::Open));
+    let worst = r
+        .tips
+        .iter()
+        .map(|t| t.k2.abs() / (tau * (PI * A).sqrt()))
+        .fold(0.0, f64::max);
+    verification_row(
+        "contact_verification",
+        "threshold_case_terminates",
+        "stick/slip threshold μ = (1−k)/(1+k)",
+        "100 × 100",
+        &format!(
+            "converged, no open face, |K_II| = {} of τ√πa",
+            pct_abs(worst, 2)
+        ),
+        "|K_II| < 5% of τ√πa",
+    );
 }
 
 /// The solve with contact gives the same answer whatever the slices it is
@@ -374,10 +490,9 @@ fn relaxation_does_not_depend_on_the_slice_size() {
 /// while that solve still moved `u` by 3.9e-4.
 #[test]
 fn converged_contact_is_a_fixed_point() {
-    use cdca::contact::iteration::{
-        ContactParams, relative_change, solve_with_contact, solve_with_contact_from,
-    };
+    use cdca::contact::iteration::{solve_with_contact, solve_with_contact_from};
     use cdca::contact::law::FaceState;
+    use cdca::contact::status::{ContactParams, relative_change};
     use cdca::discretisation::model::Model;
     use cdca::scene::Scene;
     use cdca::solvers::linear::DirectSolver;

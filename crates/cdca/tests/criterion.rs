@@ -7,6 +7,7 @@ mod common;
 use cdca::Simulation;
 use cdca::report::{Mode, TipReport};
 use cdca::scene::{Sampling, SceneFile, SideBc};
+use common::docs_row::{pct, sig, verification_row};
 use common::*;
 
 /// Erdogan–Sih kink angle for K_I = K_II, degrees.
@@ -21,7 +22,11 @@ const N: usize = 200;
 /// The tips of `scene` after one solve with the default sampling and
 /// `r0 = f h`.
 fn tips_at(mut scene: SceneFile, f: f64) -> Vec<TipReport> {
-    assert_eq!(scene.criterion.sampling, Sampling::Hybrid, "the default");
+    assert_eq!(
+        valid(scene.clone()).criterion_settings().sampling(),
+        Some(Sampling::Hybrid),
+        "the default"
+    );
     scene.criterion.r0 = Some(f / N as f64);
     let report = Simulation::new(valid(scene))
         .expect("valid")
@@ -44,13 +49,23 @@ fn default_sampling_kinks_by_erdogan_sih_at_any_radius() {
     let mut s = plate(1.0, 1.0, N, N);
     tension_top_bottom(&mut s, 20e6);
     s.cracks.push(centre_crack(0.5033, 0.4971, 0.1, 45.0));
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for f in RADII {
         for t in tips_at(s.clone(), f) {
             let angle = t.criterion.angle_deg;
             println!("r0 = {f} h, tip {}: {angle:.2}°", t.tip);
             assert!((angle - ES_45).abs() < 2.0, "r0 = {f} h: {angle:.2}°");
+            (lo, hi) = (lo.min(angle), hi.max(angle));
         }
     }
+    verification_row(
+        "criterion",
+        "default_sampling_kinks_by_erdogan_sih_at_any_radius",
+        "kink of a 45° open crack in tension (Erdogan–Sih −53.13°), default sampling, r0 = 0.3h, h, 2h, 5h",
+        "200 × 200",
+        &format!("{hi:.1}° … {lo:.1}°"),
+        "2°",
+    );
 }
 
 /// A closed crack (half-length 0.1, μ = 0.3) at `deg` in the unit plate,
@@ -90,6 +105,7 @@ fn default_sampling_carries_the_face_stress_of_a_closed_crack() {
     // no shear growth: the reported angle is then the σ_θθ peak
     s.material.k_iic = 1e9;
     let sigma_n = 12.5e6;
+    let (mut worst_angle, mut worst_stress): (f64, f64) = (0.0, 0.0);
     for f in RADII {
         let r0 = f / N as f64;
         let mut sim = Simulation::new(valid({
@@ -125,8 +141,22 @@ fn default_sampling_carries_the_face_stress_of_a_closed_crack() {
             let k = curve.theta_deg.partition_point(|&a| a < 0.0);
             let at_zero = curve.sigma_tt[k];
             assert!(rel(at_zero, -sigma_n) < 0.04, "σ_θθ(0) = {at_zero:.4e}");
+            worst_angle = worst_angle.max((angle - reference).abs());
+            worst_stress = worst_stress.max(rel(at_zero, -sigma_n));
         }
     }
+    verification_row(
+        "criterion",
+        "default_sampling_carries_the_face_stress_of_a_closed_crack",
+        "closed crack: σ_θθ(0) = face normal stress, peak angle",
+        "200 × 200",
+        &format!(
+            "peak within {:.2}°, σ_θθ(0) within {}",
+            worst_angle,
+            pct(worst_stress, 2).trim_start_matches('+')
+        ),
+        "2°, 4%",
+    );
 }
 
 /// The default r0 and σ_t of the paper's rock (c = 15 MPa, φ = 49°,
@@ -141,6 +171,15 @@ fn default_radius_and_strength_follow_the_material() {
     let (r0, st) = radius_and_strength(None, &m);
     assert!(rel(st, 11.2165e6) < 1e-4, "σ_t = {st}");
     assert!(rel(r0, 1.3421e-3) < 1e-4, "r0 = {r0}");
+    verification_row(
+        "criterion",
+        "default_radius_and_strength_follow_the_material",
+        "default r0, σ_t from the material (hand values)",
+        "",
+        &format!("{} MPa, {} mm", sig(st / 1e6, 6), sig(r0 * 1e3, 5)),
+        "1e-4",
+    );
+
     let (r0, st) = radius_and_strength(Some(0.0009), &m);
     assert!(r0 == 0.0009 && rel(st, 1.03e6 / (2.0 * PI * 0.0009f64).sqrt()) < 1e-12);
     m.tensile_strength = Some(5e6);
@@ -231,6 +270,8 @@ fn lefm_wing_load(mu: f64, k_ic: f64) -> f64 {
 #[test]
 fn initiation_load_approaches_the_sliding_crack_closed_form() {
     let k_ic = bundled("plate_45_biaxial_k0.2_mu0.5").material.k_ic;
+    let (mut below_lo, mut below_hi, mut angle_worst) = (f64::INFINITY, 0.0f64, 0.0f64);
+    let mut lefm_at_100 = Vec::new();
     for mu in [0.0, 0.5] {
         let lefm = lefm_wing_load(mu, k_ic);
         let mut last_ratio = f64::INFINITY;
@@ -256,9 +297,27 @@ fn initiation_load_approaches_the_sliding_crack_closed_form() {
             assert!((init.angle_deg.abs() - model_angle).abs() < 2.0);
             assert!(ratio < last_ratio && ratio >= 1.0, "a/r0 = {a_over_r0}");
             last_ratio = ratio;
+            below_lo = below_lo.min(1.0 - init.lambda_cr / model);
+            below_hi = below_hi.max(1.0 - init.lambda_cr / model);
+            angle_worst = angle_worst.max((init.angle_deg.abs() - model_angle).abs());
         }
         assert!(last_ratio < 1.2, "μ = {mu}: ×{last_ratio:.3} at a/r0 = 100");
+        lefm_at_100.push(format!("×{}", sig(last_ratio, 3)));
     }
+    verification_row(
+        "criterion",
+        "initiation_load_approaches_the_sliding_crack_closed_form",
+        "closed 45° crack, uniaxial compression, a/r0 = 10, 30, 100, μ = 0 and 0.5: initiation against the sliding-crack closed form (see *Initiation against the sliding-crack closed form* in [the fracture model](fracture-model.md))",
+        "100 × 100",
+        &format!(
+            "tension; λ_cr {}–{}% below the finite-r0 form, angle within {:.1}°; {} LEFM at a/r0 = 100",
+            sig(100.0 * below_lo, 2),
+            sig(100.0 * below_hi, 2),
+            angle_worst,
+            lefm_at_100.join(" / ")
+        ),
+        "6%, 2°; excess over LEFM falls, < 20% at 100",
+    );
 }
 
 /// Issue 17, item 3, with the default radius: the sliding-crack plate
@@ -333,11 +392,12 @@ fn the_default_radius_gives_wings_at_every_flaw_size() {
 #[test]
 fn williams_sampling_gives_the_sliding_crack_load_at_any_radius() {
     let k_ic = bundled("plate_45_biaxial_k0.2_mu0.5").material.k_ic;
+    let (mut a_lo, mut a_hi, mut r_lo, mut r_hi) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
     for mu in [0.0, 0.5] {
         let lefm = lefm_wing_load(mu, k_ic);
         for a_over_r0 in [3.0, 10.0, 30.0, 100.0] {
             let scene = sliding_plate(mu, a_over_r0)
-                .edit(|s| s.criterion.sampling = Sampling::Williams)
+                .edit(|s| s.criterion.sampling = Some(Sampling::Williams))
                 .expect("valid");
             let init = cdca::initiation(&scene).expect("initiation");
             println!(
@@ -350,8 +410,28 @@ fn williams_sampling_gives_the_sliding_crack_load_at_any_radius() {
             assert!(init.converged && init.mode == Mode::Tension);
             assert!(rel(init.lambda_cr, lefm) < 0.03, "a/r0 = {a_over_r0}");
             assert!((init.angle_deg.abs() - 70.53).abs() < 1.0);
+            (a_lo, a_hi) = (
+                a_lo.min(init.angle_deg.abs()),
+                a_hi.max(init.angle_deg.abs()),
+            );
+            (r_lo, r_hi) = (
+                r_lo.min(init.lambda_cr / lefm),
+                r_hi.max(init.lambda_cr / lefm),
+            );
         }
     }
+    verification_row(
+        "criterion",
+        "williams_sampling_gives_the_sliding_crack_load_at_any_radius",
+        "the same crack with `criterion.sampling = \"williams\"`, a/r0 = 3…100 (LEFM sliding crack)",
+        "100 × 100",
+        &format!(
+            "tension {a_lo:.1}–{a_hi:.1}°, ×{}–{} of LEFM",
+            sig(r_lo, 3),
+            sig(r_hi, 3)
+        ),
+        "3%, 1°",
+    );
 }
 
 /// Face friction on the default scene (issue 17, item 2), initiation under
@@ -393,4 +473,17 @@ fn friction_raises_the_wing_load_with_the_default_contact() {
         assert!(w[1].lambda_cr > w[0].lambda_cr, "{rows:?}");
         assert!(w[1].angle_deg.abs() < w[0].angle_deg.abs(), "{rows:?}");
     }
+    let loads: Vec<String> = rows.iter().map(|i| sig(i.lambda_cr, 3)).collect();
+    let angles: Vec<String> = rows
+        .iter()
+        .map(|i| format!("{:.1}°", i.angle_deg.abs()))
+        .collect();
+    verification_row(
+        "criterion",
+        "friction_raises_the_wing_load_with_the_default_contact",
+        "face friction μ = 0…0.6 on the default scene with the penalty joint and r0 = a/5π (sliding-crack picture)",
+        "60 × 60",
+        &format!("tension; λ_cr {}; {}", loads.join(", "), angles.join(", ")),
+        "λ_cr strictly rising, angle strictly falling",
+    );
 }

@@ -9,6 +9,7 @@ use cdca::scene::{
     CrackSpec, CriterionKind, Fix, GrowthControl, Plane, PointSupport, Sampling, Scene, SceneFile,
     SideBc,
 };
+use common::docs_row::{record_row, verification_row};
 use common::*;
 
 fn run(sim: &mut Simulation) {
@@ -47,6 +48,15 @@ fn mode_i_growth_is_straight_and_symmetric() {
     let (a, b) = (c[0], c[c.len() - 1]);
     assert!((a[0] + b[0] - 1.0).abs() < 0.01 * da, "x: {a:?} {b:?}");
     assert!((a[1] - b[1]).abs() < 0.01 * da, "y: {a:?} {b:?}");
+    let worst = grown.iter().map(|g| g.angle_deg.abs()).fold(0.0, f64::max);
+    verification_row(
+        "growth",
+        "mode_i_growth_is_straight_and_symmetric",
+        "mode-I growth (straight, symmetric)",
+        "40 × 41",
+        &format!("|angle| ≤ {worst:.2}°, tips mirror"),
+        "1°, 1% Δa",
+    );
 }
 
 /// Mixed mode: an open crack at 45° under tension (K_I = K_II, T = 0) kinks
@@ -54,9 +64,10 @@ fn mode_i_growth_is_straight_and_symmetric() {
 /// tips; MTS and the comprehensive criterion with Williams sampling agree.
 #[test]
 fn mixed_mode_kink_angle_is_erdogan_sih() {
+    let mut worst: f64 = 0.0;
     for (kind, sampling) in [
-        (CriterionKind::Mts, Sampling::Field),
-        (CriterionKind::Comprehensive, Sampling::Williams),
+        (CriterionKind::Mts, None),
+        (CriterionKind::Comprehensive, Some(Sampling::Williams)),
     ] {
         let mut s = plate(1.0, 1.0, 100, 100);
         tension_top_bottom(&mut s, 20e6);
@@ -68,6 +79,7 @@ fn mixed_mode_kink_angle_is_erdogan_sih() {
         let step = sim.grow_step().expect("step");
         assert_eq!(step.grown.len(), 2, "{kind:?}: both tips grow");
         for g in &step.grown {
+            worst = worst.max((g.angle_deg + 53.13).abs());
             assert!(
                 (g.angle_deg + 53.13).abs() < 3.0,
                 "{kind:?} {sampling:?}: {}",
@@ -81,6 +93,14 @@ fn mixed_mode_kink_angle_is_erdogan_sih() {
         let new = (c[n - 1][1] - c[n - 2][1]).atan2(c[n - 1][0] - c[n - 2][0]);
         assert!(((new - old).to_degrees() + 53.13).abs() < 3.0);
     }
+    verification_row(
+        "growth",
+        "mixed_mode_kink_angle_is_erdogan_sih",
+        "45° open crack in tension, MTS and comprehensive (Williams)",
+        "100 × 100",
+        &format!("within {worst:.1}°"),
+        "3°",
+    );
 }
 
 /// The 30 mm specimen with one flaw of half-length `a` at `deg` centred at
@@ -202,9 +222,11 @@ fn wing_cracks_curve_toward_the_load() {
         let start = c.iter().position(|p| *p == wing[0]).expect("tip") - 1;
         c[..start].iter().rev().copied().collect()
     };
+    let mut wings = Vec::new();
     for (name, w) in [("upper", &wing), ("lower", &lower)] {
         let l = length(w);
         let end = end_angle_from_vertical(w, a);
+        wings.push((l / a, end));
         println!(
             "{name} wing: length {:.2} a, end chord {end:.1}° from vertical",
             l / a
@@ -222,6 +244,23 @@ fn wing_cracks_curve_toward_the_load() {
     }
     let last = steps.last().expect("steps").crack_length;
     assert!((last - length(c)).abs() < 1e-12, "{last} vs {}", length(c));
+    let starts: Vec<f64> = first.iter().map(|g| g.angle_deg.abs()).collect();
+    verification_row(
+        "growth",
+        "wing_cracks_curve_toward_the_load",
+        "wings from a held-out closed flaw (3.4 mm at 40°, off centre), critical control",
+        "100 × 100",
+        &format!(
+            "start at {:.1}–{:.1}° in tension; wings {:.2} and {:.2} flaw lengths, last flaw length {:.1}° and {:.1}° from vertical",
+            starts[0].min(starts[1]),
+            starts[0].max(starts[1]),
+            wings[0].0,
+            wings[1].0,
+            wings[0].1,
+            wings[1].1
+        ),
+        "≥ 2 flaw lengths, 15°",
+    );
 }
 
 /// λ_cr is the load at which the first tip just meets its criterion, to
@@ -303,12 +342,22 @@ fn wing_path_is_insensitive_to_mesh_and_increment() {
     };
     let h = 0.03 / 60.0;
     let reference = path(60, 0.0009);
+    let mut apart = Vec::new();
     for (n, da) in [(120, 0.0009), (60, 0.00045)] {
         let other = path(n, da);
         let d = hausdorff_prefix(&reference, &other, 0.004);
         println!("n = {n}, Δa = {da}: distance {:.3} h", d / h);
         assert!(d < 2.0 * h, "n = {n}, Δa = {da}: paths {d:.3e} m apart");
+        apart.push(format!("{:.2} h", d / h));
     }
+    verification_row(
+        "growth",
+        "wing_path_is_insensitive_to_mesh_and_increment",
+        "wing path at h and h/2, Δa and Δa/2, product defaults (critical control)",
+        "60 / 120",
+        &format!("{} apart", apart.join(" and ")),
+        "2 h",
+    );
 }
 
 /// Largest distance from a point of one path (within `len` of its start)
@@ -406,6 +455,7 @@ fn stepped_flaws_coalesce() {
     let text = include_str!("../../../assets/scenes/specimen_two_flaws_stepped.json");
     let bundled = Scene::from_json(text).expect("scene").into_file();
     let held_out = flaw_pair((0.01437, 0.01281), [0.0012, 0.0046]);
+    let mut at = Vec::new();
     for (name, scene) in [("bundled", bundled), ("held out", held_out)] {
         let sim = grow_until_junction(name, scene);
         assert!(
@@ -413,13 +463,22 @@ fn stepped_flaws_coalesce() {
             "{name}: no junction formed: {:?}",
             sim.cracks()
         );
+        at.push(format!("step {}", sim.history().len()));
     }
+    verification_row(
+        "growth",
+        "stepped_flaws_coalesce",
+        "stepped flaw pairs link (bundled, and held out: 3.4 mm at 50°, 1.2 mm right and 4.6 mm up), product defaults",
+        "100 × 100",
+        &format!("junction at {}, every step converged", at.join(" / ")),
+        "a junction forms",
+    );
 }
 
 /// Coalescence of overlapping flaws under the product's defaults (critical
 /// control, default criterion), issue "overlapping pair does not link":
 /// the bundled overlapping pair on a coarser mesh (80 × 80; at 100 × 100 it
-/// links at step 31, see README) and a held-out overlapping pair (two
+/// links at step 31, see docs/fracture-model.md) and a held-out overlapping pair (two
 /// 3.4 mm flaws at 50°, the second 2.6 mm to the right and 1.5 mm below,
 /// 100 × 100). Within 30 steps, every one converged, a wing grown from one
 /// flaw ends on the other flaw's crack (a junction), and that wing is at
@@ -846,20 +905,25 @@ fn drawn_flaws_grow_wings_with_the_default_contact() {
 /// rises. Shear comes first only next to the sliding threshold, where the
 /// wing's load diverges as 1/(τ − μσ_n): τ − μσ_n below 0.1σ (measured: the
 /// two flaws at 0.058σ and 0.067σ, at λ = 2.15, 2.7 times the rock's
-/// strength). The README's table (*The whole range, first growth*): 40 of
+/// strength). The table in docs/fracture-model.md (*The whole range, first growth*): 40 of
 /// the 48 start tension wings at 55–85° to the flaw; six steep flaws with
 /// friction at 48.9–54.5°.
 #[test]
 fn first_growth_over_the_flaw_range_follows_the_closed_form() {
     let (len, h) = (0.0035, 0.0005);
     let mut failures = Vec::new();
+    // the largest distance of a tension angle from the closed form, and the
+    // drives (τ − μσ_n over σ) of the flaws that start in shear
+    let (mut off_closed_form, mut shear_drives) = (0.0f64, Vec::new());
     for deg in [30.0, 35.0, 40.0, 45.0, 50.0, 55.0, 60.0] {
         let t = f64::to_radians(deg);
         let mut last_tension: Option<f64> = None;
+        let mut cells = vec![format!("{deg}°")];
         for mu in [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6] {
             // τ − μσ_n per unit load
             let drive = t.sin() * t.cos() - mu * t.cos() * t.cos();
             if drive <= 0.0 {
+                cells.push("(faces stuck)".into());
                 continue;
             }
             let mut s = bundled("specimen_single_flaw");
@@ -879,6 +943,17 @@ fn first_growth_over_the_flaw_range_follows_the_closed_form() {
                 "{deg}°, μ {mu}: {:?} {angle:.1}° at λ {:.3} (closed form {kink:.1}°), τ − μσ_n = {drive:.3}σ",
                 g.mode, step.load_factor
             );
+            let window = g.mode == Mode::Tension && (55.0..=85.0).contains(&angle);
+            cells.push(format!(
+                "{} {angle:.1}°, {:.2}{}",
+                if g.mode == Mode::Tension { "T" } else { "S" },
+                step.load_factor,
+                if window { "" } else { " *" }
+            ));
+            match g.mode {
+                Mode::Tension => off_closed_form = off_closed_form.max((angle - kink).abs()),
+                _ => shear_drives.push(format!("{drive:.3}σ")),
+            }
             let ok = step.converged
                 && match g.mode {
                     Mode::Tension => {
@@ -892,8 +967,21 @@ fn first_growth_over_the_flaw_range_follows_the_closed_form() {
                 failures.push(format!("{deg}°, μ {mu}: {:?} {angle:.1}°", g.mode));
             }
         }
+        let cells: Vec<&str> = cells.iter().map(String::as_str).collect();
+        record_row("flaw-range-first-growth", &format!("{deg:03}"), &cells);
     }
     assert!(failures.is_empty(), "{failures:?}");
+    verification_row(
+        "growth",
+        "first_growth_over_the_flaw_range_follows_the_closed_form",
+        "first growth of a 3.5 mm closed flaw over issue 17's range, β = 30–60° × μ = 0–0.6 (48 sliding cases), product defaults",
+        "60 × 60",
+        &format!(
+            "tension angles within {off_closed_form:.1}° of the sampling's sliding-crack closed form, falling with μ at every β; shear first only at τ − μσ_n = {}",
+            shear_drives.join(" and ")
+        ),
+        "1°; strictly falling; shear only below 0.1σ",
+    );
 }
 
 /// The same 48 flaws as [`first_growth_over_the_flaw_range_follows_the_closed_form`]
@@ -907,6 +995,8 @@ fn first_growth_over_the_flaw_range_follows_the_closed_form() {
 fn the_whole_flaw_range_grows_wings_to_the_load_axis() {
     let (len, h) = (0.0035, 0.0005);
     let mut failures = Vec::new();
+    let (mut runs, mut all_converged) = (0, 0);
+    let (mut l_lo, mut l_hi, mut e_lo, mut e_hi) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
     for deg in [30.0, 35.0, 40.0, 45.0, 50.0, 55.0, 60.0] {
         let t = f64::to_radians(deg);
         for mu in [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6] {
@@ -925,9 +1015,25 @@ fn the_whole_flaw_range_grows_wings_to_the_load_axis() {
             if !(converged && wings.iter().all(|&(l, end)| l >= 2.0 && end <= 15.0)) {
                 failures.push(format!("{deg}°, μ {mu}: {wings:.2?}"));
             }
+            runs += 1;
+            all_converged += usize::from(converged);
+            for &(l, end) in &wings {
+                (l_lo, l_hi) = (l_lo.min(l), l_hi.max(l));
+                (e_lo, e_hi) = (e_lo.min(end), e_hi.max(end));
+            }
         }
     }
     assert!(failures.is_empty(), "{failures:?}");
+    verification_row(
+        "growth",
+        "the_whole_flaw_range_grows_wings_to_the_load_axis",
+        "the same 48 flaws grown to failure, product defaults",
+        "60 × 60",
+        &format!(
+            "every step converged in {all_converged} of {runs}; wings {l_lo:.2}–{l_hi:.2} flaw lengths, last flaw length {e_lo:.1}–{e_hi:.1}° from the load axis"
+        ),
+        "≥ 2 flaw lengths, 15°",
+    );
 }
 
 /// Face cohesion on a drawn flaw: the default scene's 6 mm flaw (45°,

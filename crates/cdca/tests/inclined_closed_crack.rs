@@ -12,6 +12,7 @@ mod common;
 
 use cdca::report::SolveReport;
 use cdca::scene::Plane;
+use common::docs_row::{pct, pct_abs, verification_row};
 use common::*;
 
 const A: f64 = 0.05;
@@ -78,6 +79,25 @@ fn sliding_crack_at_20_degrees_to_compression() {
         "{:?}",
         r.contact
     );
+    let worst = |a: f64, e: f64| if e.abs() > a.abs() { e } else { a };
+    let k2_err = r.tips.iter().map(|t| t.k2 / exact - 1.0).fold(0.0, worst);
+    let k1_ratio = r
+        .tips
+        .iter()
+        .map(|t| (t.k1 / t.k2).abs())
+        .fold(0.0, f64::max);
+    verification_row(
+        "inclined_closed_crack",
+        "sliding_crack_at_20_degrees_to_compression",
+        "closed crack at 20° to 100 MPa compression, μ = tan 30°, a = 8h",
+        "161 × 161",
+        &format!(
+            "K_II {}, |K_I| = {} of |K_II|, no open piece",
+            pct(k2_err, 2),
+            pct_abs(k1_ratio, 2)
+        ),
+        "3%, 1%, 0 open",
+    );
     for t in &r.tips {
         println!(
             "tip {}: K_II {:.5e} (exact {exact:.5e}, {:+.2}%), K_I/|K_II| {:+.4}",
@@ -106,6 +126,19 @@ fn stuck_crack_at_20_degrees_to_compression() {
     let r = solve_converged(3.0);
     let reference = sliding_k2(30f64.to_radians().tan()).abs();
     assert_eq!(r.contact.open + r.contact.slip, 0, "{:?}", r.contact);
+    let ratio = r
+        .tips
+        .iter()
+        .map(|t| t.k2.abs() / reference)
+        .fold(0.0, f64::max);
+    verification_row(
+        "inclined_closed_crack",
+        "stuck_crack_at_20_degrees_to_compression",
+        "same crack stuck, μ = 3",
+        "161 × 161",
+        &format!("|K_II| = {} of the sliding value", pct_abs(ratio, 2)),
+        "2%, |K_I| ≤ 1%",
+    );
     for t in &r.tips {
         println!(
             "tip {}: |K_II|/K_slide {:.4}, |K_I|/K_slide {:.4}",

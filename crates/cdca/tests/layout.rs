@@ -1,6 +1,6 @@
 //! The solver crate's layout (issue 13): imports go one way, down the
 //! stack of the method's parts, and no file imports from a file that
-//! imports it; the README's module tree lists exactly the source files.
+//! imports it; ARCHITECTURE.md's module tree lists exactly the source files.
 //!
 //! Reference: the table in `src/lib.rs`. A file's imports are its
 //! `use crate::…`/`use super::…` lines and inline `crate::…` paths outside
@@ -16,7 +16,7 @@ mod support;
 use support::rust_files;
 
 /// The parts, bottom to top, as `lib.rs` lists them.
-const PARTS: [&str; 10] = [
+const PARTS: [&str; 11] = [
     "error",
     "scene",
     "report",
@@ -27,6 +27,7 @@ const PARTS: [&str; 10] = [
     "fracture",
     "simulation",
     "race",
+    "csv",
 ];
 
 fn src_dir() -> PathBuf {
@@ -310,13 +311,14 @@ fn imports_go_down_the_stack_of_parts() {
     assert!(upward.is_empty(), "imports going up the stack: {upward:#?}");
 }
 
-/// The README's Layout section lists every source file of the solver crate,
-/// and nothing else.
+/// ARCHITECTURE.md's Layout section lists every source file of the solver
+/// crate, and nothing else.
 #[test]
-fn readme_module_tree_matches_the_folders() {
-    let readme = fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md"))
-        .expect("README.md at the repository root");
-    let layout = readme
+fn architecture_module_tree_matches_the_folders() {
+    let architecture =
+        fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../ARCHITECTURE.md"))
+            .expect("ARCHITECTURE.md at the repository root");
+    let layout = architecture
         .split("## Layout")
         .nth(1)
         .and_then(|s| s.split("\n## ").next())
@@ -350,7 +352,7 @@ fn readme_module_tree_matches_the_folders() {
     }
     assert!(
         missing.is_empty(),
-        "files missing from the README's Layout tree: {missing:?}"
+        "files missing from ARCHITECTURE.md's Layout tree: {missing:?}"
     );
     // and no file named there that does not exist
     let names: BTreeSet<String> = files
@@ -364,6 +366,6 @@ fn readme_module_tree_matches_the_folders() {
         .collect();
     assert!(
         stale.is_empty(),
-        "README names files that do not exist: {stale:?}"
+        "ARCHITECTURE.md names files that do not exist: {stale:?}"
     );
 }

@@ -83,3 +83,55 @@ fn biaxial_family_matches_its_file_names() {
     }
     assert_eq!(count, 7);
 }
+
+/// A criterion setting the chosen kind would ignore is refused before any
+/// work, naming the field: MTS reads no circle (`r0`, `sampling`) and has
+/// no shear branch (`shear_strength`); MTS with T samples its own circle
+/// (`sampling`) and has no shear branch. SPEC §10's own spelling of the
+/// default criterion, every field written, still reads.
+#[test]
+fn a_criterion_setting_the_kind_would_ignore_is_refused_by_name() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../assets/scenes/specimen_single_flaw.json"
+    ))
+    .expect("the default scene");
+    let with = |criterion: &str| {
+        let mut v: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+        v["criterion"] = serde_json::from_str(criterion).expect("criterion JSON");
+        match Scene::from_json(&v.to_string()) {
+            Ok(_) => None,
+            Err(cdca::SceneError::Invalid { field, .. }) => Some(field),
+            Err(e) => panic!("{criterion}: {e}"),
+        }
+    };
+    for (criterion, field) in [
+        (r#"{"kind": "mts", "r0": 0.001}"#, "criterion.r0"),
+        (
+            r#"{"kind": "mts", "sampling": "hybrid"}"#,
+            "criterion.sampling",
+        ),
+        (
+            r#"{"kind": "mts", "shear_strength": "faces"}"#,
+            "criterion.shear_strength",
+        ),
+        (
+            r#"{"kind": "mts_t", "sampling": "williams"}"#,
+            "criterion.sampling",
+        ),
+        (
+            r#"{"kind": "mts_t", "shear_strength": "rock"}"#,
+            "criterion.shear_strength",
+        ),
+    ] {
+        assert_eq!(with(criterion).as_deref(), Some(field), "{criterion}");
+    }
+    for accepted in [
+        r#"{"kind": "comprehensive", "r0": null, "sampling": "hybrid", "shear_strength": "faces"}"#,
+        r#"{"kind": "mts", "r0": null}"#,
+        r#"{"kind": "mts_t", "r0": 0.001}"#,
+        "{}",
+    ] {
+        assert_eq!(with(accepted), None, "{accepted}");
+    }
+}

@@ -5,8 +5,9 @@
 //! (`cargo test -p cdca --release --test solvers -- --nocapture` prints
 //! the tables).
 
-use cdca::contact::iteration::{ContactInfo, ContactParams, relative_change, solve_with_contact};
+use cdca::contact::iteration::solve_with_contact;
 use cdca::contact::law::{FaceState, face_tractions};
+use cdca::contact::status::{ContactInfo, ContactParams, relative_change};
 use cdca::discretisation::model::Model;
 use cdca::discretisation::xfem::Xfem;
 use cdca::fracture::tips::all_tip_sifs;

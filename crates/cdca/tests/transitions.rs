@@ -7,6 +7,11 @@ use cdca::Simulation;
 use cdca::report::Mode;
 use cdca::scene::{CriterionSpec, Scene, SideBc};
 
+#[path = "support/docs_row.rs"]
+mod docs_row;
+
+use docs_row::{record_row, verification_row};
+
 /// Initiation of one plate scene: the lowest vertical load P_V (Pa) at
 /// which a tip meets the criterion, with that tip's |angle| (degrees, SPEC
 /// §8), mode, K_I and K_II; `None` when nothing initiates up to P_V = 1 GPa.
@@ -101,6 +106,24 @@ fn series(names: &[(&str, String)]) -> Vec<Option<Initiation>> {
         .map(|(case, file)| ((*case).to_string(), initiation(file, MESH)))
         .collect();
     table(&rows);
+    // the table of docs/fracture-model.md, *The paper's transitions*
+    for ((_, file), (_, r)) in names.iter().zip(&rows) {
+        let scene = file.trim_start_matches("plate_45_biaxial_");
+        let case = scene.replace("_mu", ", ").replace('k', "");
+        let cells = match r {
+            Some(i) => vec![
+                case,
+                format!("{:.0} MPa", i.p_v / 1e6),
+                format!("{:.1}°", i.angle),
+                format!("{:?}", i.mode).to_lowercase(),
+                format!("{:.3}", i.k1 / 1e6),
+                format!("{:.2}", i.k2.abs() / 1e6),
+            ],
+            None => vec![case, format!("none up to {} MPa", P_MAX / 1e6)],
+        };
+        let cells: Vec<&str> = cells.iter().map(String::as_str).collect();
+        record_row("transitions", scene, &cells);
+    }
     rows.into_iter().map(|(_, r)| r).collect()
 }
 
@@ -136,6 +159,22 @@ fn confinement_turns_tension_into_shear() {
     let last = rows[2].expect("k = 0.3 initiates");
     assert!(last.mode == Mode::Shear && last.angle < 35.0, "{last:?}");
     assert_falls(&rows);
+    let steps: Vec<String> = rows
+        .iter()
+        .flatten()
+        .map(|i| format!("{:.1}° {}", i.angle, format!("{:?}", i.mode).to_lowercase()))
+        .collect();
+    verification_row(
+        "transitions",
+        "confinement_turns_tension_into_shear",
+        "confinement turns tension into shear (paper's plate, k = 0.1, 0.2, 0.3; the friction series in `friction_turns_tension_into_shear`)",
+        "60 × 60",
+        &format!(
+            "{}; see *The paper's transitions* in [the fracture model](fracture-model.md)",
+            steps.join(" → ")
+        ),
+        "first tension > 45°, last shear < 35°, angles never rise",
+    );
 }
 
 /// μ = 0.32, 0.48, 0.5, 0.67, 0.83 at P_H/P_V = 0.2 (the paper's friction

@@ -50,12 +50,11 @@
 
 use web_time::Instant;
 
-use crate::contact::iteration::{
-    ContactParams, FlipTracker, Reached, relative_change, update_followers,
-};
 use crate::contact::law::{
     ContactState, FaceState, contact_system, coulomb_limit, gaps, update_point,
 };
+use crate::contact::points::update_followers;
+use crate::contact::status::{ContactParams, FlipTracker, Reached, relative_change};
 use crate::discretisation::dofs::FIXED;
 use crate::discretisation::xfem::{FacePoint, Xfem};
 use crate::error::SolveError;
@@ -460,7 +459,7 @@ fn visit(
 
 /// Whether the return mapping at `u` gives every free point its state, and
 /// how many frozen points break the law (see
-/// [`breaks_law`](crate::contact::iteration::breaks_law)).
+/// [`breaks_law`]).
 fn final_check(
     x: &Xfem,
     committed: &[FaceState],

@@ -5,88 +5,22 @@
 //! (Tresca) problem and updated in an outer loop; cycling points are
 //! damped by a line search and counted, so the loop always ends with an
 //! explicit status. Resumable ([`ContactSolve`]); the blocking calls loop
-//! over it. Its cycling guard ([`FlipTracker`]) and state bookkeeping
-//! ([`Reached`]) serve the in-sweep rule too.
+//! over it. Its settings, cycling guard and bookkeeping are in
+//! [`status`](crate::contact::status) (the in-sweep rule shares them), the
+//! law over every face point in [`points`](crate::contact::points).
 
-use crate::contact::law::{
-    ContactState, FaceState, contact_system_split, friction_limit, gaps, stick_or_slip,
-    update_point,
-};
+use crate::contact::law::{ContactState, FaceState, contact_system_split, gaps};
 use crate::contact::limit_mix::LimitMix;
+use crate::contact::points::{
+    coulomb_limits, coulomb_states, initial_limits, matrix_kinds, tresca_point, update_limited,
+};
+use crate::contact::status::{ContactInfo, ContactParams, FlipTracker, Reached, relative_change};
 use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::dofs::FIXED;
 use crate::discretisation::xfem::Xfem;
 use crate::error::SolveError;
-use crate::geometry::cracks::Crack;
-use crate::scene::SolverSpec;
-use crate::solvers::linear::{LinearInfo, LinearSolver};
+use crate::solvers::linear::LinearSolver;
 use crate::solvers::relaxation::{RelaxStatus, ResidualSample};
-
-/// Settings of the contact iteration.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ContactParams {
-    /// Converged when `‖Δu‖ ≤ tolerance ‖u‖` and no state changed.
-    pub tolerance: f64,
-    pub max_iterations: usize,
-    /// State changes after which a point counts as cycling (frozen by the
-    /// in-sweep rule; damped, and reported if the iteration does not
-    /// settle, by [`ContactSolve`]).
-    pub max_flips: u32,
-}
-
-impl ContactParams {
-    /// Contact iterations allowed (at least one).
-    pub fn max_contact_iterations(&self) -> usize {
-        self.max_iterations.max(1)
-    }
-}
-
-impl Default for ContactParams {
-    /// The scene file's defaults (`solver.contact_tolerance`,
-    /// `solver.max_contact_iterations`), four flips.
-    fn default() -> Self {
-        let s = SolverSpec::default();
-        Self {
-            tolerance: s.contact_tolerance,
-            max_iterations: s.max_contact_iterations,
-            max_flips: 4,
-        }
-    }
-}
-
-/// How the contact iteration ended.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct ContactInfo {
-    pub iterations: usize,
-    /// True only when every test passed: the last linear solve converged,
-    /// no state changed, the displacement settled (with slip points), and
-    /// no frozen point breaks the contact law at the final displacement
-    /// ([`ContactSolve`] freezes none: every point is in its Coulomb state).
-    pub converged: bool,
-    /// Relative displacement change of the last iteration ([`ContactSolve`]
-    /// at an inner solution: the smaller of the change since the last
-    /// inner solution and the relative change of the slip points' friction
-    /// limits).
-    pub residual: f64,
-    /// Ended at `max_iterations` without settling (states changing, or
-    /// with slip the displacement still moving).
-    pub capped: bool,
-    /// Points frozen for cycling (the in-sweep rule), or, when
-    /// [`ContactSolve`] ends capped, those that changed state more than
-    /// `max_flips` times.
-    pub cycling: usize,
-    /// Frozen points whose kept state is not the one the return mapping
-    /// gives at the final displacement (they break the stick/slip rule).
-    pub violating: usize,
-    /// [`ContactSolve`]: points the last iteration left unsettled, those
-    /// whose state it changed or, when none changed, those not in their
-    /// Coulomb state at the solution (0 once converged).
-    pub unsettled: usize,
-    /// Linear iterations summed over the contact iterations.
-    pub linear_iterations: usize,
-    /// The last linear solve.
-    pub last: LinearInfo,
-}
 
 /// The contact iteration as a resumable state machine: each
 /// [`advance`](Self::advance) call runs a slice of the current linear
@@ -176,46 +110,6 @@ fn signature(states: &[FaceState]) -> Vec<(ContactState, bool, bool)> {
 /// Points whose [`signature`] entries differ.
 fn differ(a: &[(ContactState, bool, bool)], b: &[(ContactState, bool, bool)]) -> usize {
     a.iter().zip(b).filter(|(p, q)| p != q).count()
-}
-
-/// Where a contact iteration stands, the outer loop's ([`ContactSolve`])
-/// or the in-sweep rule's
-/// ([`InSweep`](crate::contact::in_sweep::InSweep)): the contact states,
-/// how it went, whether it ended, the residual samples so far, and the
-/// flip counts of the stick–slip cycling guard.
-#[derive(Clone, Debug, Default)]
-pub struct Reached {
-    /// The states as they are now (the result once finished).
-    pub states: Vec<FaceState>,
-    /// How it went so far (how it ended, once finished).
-    pub info: ContactInfo,
-    pub finished: bool,
-    /// Relative residual samples, iterations and times from the start.
-    pub history: Vec<ResidualSample>,
-    /// How often each point changed state, and which are frozen.
-    pub tracker: FlipTracker,
-}
-
-impl Reached {
-    /// The start: the states `initial`, nothing done.
-    pub fn new(initial: Vec<FaceState>) -> Self {
-        Self {
-            tracker: FlipTracker::new(initial.len()),
-            states: initial,
-            ..Self::default()
-        }
-    }
-
-    /// Whether the iteration has ended; `committed` must hold one state per
-    /// face point (the caller's slip history of this discretisation).
-    pub(crate) fn ended(&self, committed: &[FaceState]) -> bool {
-        assert_eq!(
-            self.states.len(),
-            committed.len(),
-            "one state per face point"
-        );
-        self.finished
-    }
 }
 
 /// The linear system of one contact iteration.
@@ -680,175 +574,4 @@ pub fn solve_with_contact_from(
     {}
     let reached = iteration.into_reached();
     Ok((reached.states, reached.info))
-}
-
-/// Per point: how often it changed state, and whether it is frozen.
-#[derive(Clone, Debug, Default)]
-pub struct FlipTracker {
-    flips: Vec<u32>,
-    frozen: Vec<bool>,
-}
-
-impl FlipTracker {
-    pub fn new(n: usize) -> Self {
-        Self {
-            flips: vec![0; n],
-            frozen: vec![false; n],
-        }
-    }
-
-    /// Whether point `i` is frozen.
-    pub fn is_frozen(&self, i: usize) -> bool {
-        self.frozen[i]
-    }
-
-    /// Counts a state change of point `i`, freezing it once it has changed
-    /// more than `max_flips` times.
-    pub fn flip(&mut self, i: usize, max_flips: u32) {
-        self.flips[i] += 1;
-        if self.flips[i] > max_flips {
-            self.frozen[i] = true;
-        }
-    }
-
-    /// Number of frozen (cycling) points.
-    pub fn frozen(&self) -> usize {
-        self.frozen.iter().filter(|&&f| f).count()
-    }
-}
-
-/// The Coulomb states (the return mapping, [`update_point`]) of every face
-/// point at `u`.
-fn coulomb_states(x: &Xfem, u: &[f64], committed: &[FaceState]) -> Vec<FaceState> {
-    let mut states: Vec<FaceState> = x
-        .faces
-        .iter()
-        .zip(committed)
-        .map(|(fp, c)| {
-            let (gn, gt) = gaps(x, fp, u);
-            update_point(&x.funcs.cracks[fp.crack], c.slip, gn, gt)
-        })
-        .collect();
-    update_followers(x, u, &mut states);
-    states
-}
-
-/// The friction limit each point's state carries: `|p_T|` where it slips,
-/// its Coulomb limit where it sticks (zero where open).
-fn initial_limits(x: &Xfem, states: &[FaceState]) -> Vec<f64> {
-    x.faces
-        .iter()
-        .zip(states)
-        .map(|(fp, s)| match s.state {
-            ContactState::Open => 0.0,
-            _ => friction_limit(&x.funcs.cracks[fp.crack], s.g_n),
-        })
-        .collect()
-}
-
-/// The Coulomb limit `μ|p_N| + c_c` of every face point at `u` (zero
-/// where it is open).
-fn coulomb_limits(x: &Xfem, u: &[f64]) -> Vec<f64> {
-    x.faces
-        .iter()
-        .map(|fp| {
-            let gn = gaps(x, fp, u).0;
-            if gn < 0.0 {
-                friction_limit(&x.funcs.cracks[fp.crack], gn)
-            } else {
-                0.0
-            }
-        })
-        .collect()
-}
-
-/// The inner (Tresca) law of a point: the normal penalty where `g_N < 0`,
-/// and, independently of it, stick/slip with the friction limit `tau_y`
-/// held fixed (open, without any traction, where `g_N ≥ 0` and `τ_y = 0`).
-/// Its potential is convex, so the line search's slope is monotone.
-fn tresca_point(crack: &Crack, committed_slip: f64, g_n: f64, g_t: f64, tau_y: f64) -> FaceState {
-    if g_n >= 0.0 && tau_y <= 0.0 {
-        return update_point(crack, committed_slip, g_n, g_t);
-    }
-    stick_or_slip(
-        crack,
-        committed_slip,
-        g_n,
-        g_t,
-        crack.kn * g_n.min(0.0),
-        tau_y,
-    )
-}
-
-/// The matrix the states give (its kind per point), or `None` when some
-/// point sticks while open (a matrix no [`ContactState`] list names).
-fn matrix_kinds(states: &[FaceState]) -> Option<Vec<ContactState>> {
-    states
-        .iter()
-        .map(|s| match s.state {
-            ContactState::Stick if s.g_n >= 0.0 => None,
-            ContactState::Slip if s.g_n >= 0.0 => Some(ContactState::Open),
-            k => Some(k),
-        })
-        .collect()
-}
-
-/// Maps every face point by the inner law ([`tresca_point`]) with the
-/// friction limits `limits`; returns how many changed state, each change
-/// counted in `tracker` (which only reports them: the line search damps
-/// the cycling).
-fn update_limited(
-    x: &Xfem,
-    u: &[f64],
-    committed: &[FaceState],
-    states: &mut [FaceState],
-    limits: &[f64],
-    tracker: &mut FlipTracker,
-    max_flips: u32,
-) -> usize {
-    let mut changed = 0;
-    for i in 0..states.len() {
-        let fp = &x.faces[i];
-        if fp.follows.is_some() {
-            continue;
-        }
-        let (gn, gt) = gaps(x, fp, u);
-        let crack = &x.funcs.cracks[fp.crack];
-        let new = tresca_point(crack, committed[i].slip, gn, gt, limits[i]);
-        if new.state != states[i].state {
-            changed += 1;
-            tracker.flip(i, max_flips);
-        }
-        states[i] = new;
-    }
-    update_followers(x, u, states);
-    changed
-}
-
-/// Slivers at tips take their neighbour's state and traction, with their
-/// own gaps from `u`.
-pub fn update_followers(x: &Xfem, u: &[f64], states: &mut [FaceState]) {
-    for (i, fp) in x.faces.iter().enumerate() {
-        if let Some(j) = fp.follows {
-            let (g_n, g_t) = gaps(x, fp, u);
-            states[i] = FaceState {
-                g_n,
-                g_t,
-                ..states[j]
-            };
-        }
-    }
-}
-
-/// `‖a − b‖ / ‖a‖` (or `‖a − b‖` when a = 0): the contact iteration's
-/// convergence measure.
-pub fn relative_change(a: &[f64], b: &[f64]) -> f64 {
-    let d: f64 = a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| (x - y) * (x - y))
-        .sum::<f64>()
-        .sqrt();
-    let n: f64 = a.iter().map(|x| x * x).sum::<f64>().sqrt();
-    if n > 0.0 { d / n } else { d }
 }

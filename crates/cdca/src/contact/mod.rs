@@ -13,5 +13,7 @@ pub mod in_sweep;
 pub mod iteration;
 pub mod law;
 pub mod limit_mix;
+pub mod points;
+pub mod status;
 
 pub use law::{ContactState, FaceState};

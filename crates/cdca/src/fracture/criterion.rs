@@ -53,7 +53,8 @@ pub struct CriterionParams {
     pub k_ic: f64,
     /// K_IIC, Pa·√m.
     pub k_iic: f64,
-    pub shear: ShearStrength,
+    /// The shear branch's envelope; `None`: the criterion has none (MTS).
+    pub shear: Option<ShearStrength>,
     /// Whether the scene gives r0 (`criterion.r0`); if not, r0 follows
     /// the crack's size ([`for_crack`](Self::for_crack)).
     pub radius_given: bool,
@@ -81,17 +82,18 @@ impl CriterionParams {
     /// [`radius_and_strength`].
     pub fn of_scene(scene: &Scene) -> Self {
         let m = &scene.material;
-        let (r0, sigma_t) = radius_and_strength(scene.criterion.r0, m);
+        let criterion = scene.criterion_settings();
+        let (r0, sigma_t) = radius_and_strength(criterion.r0(), m);
         Self {
-            kind: scene.criterion.kind,
+            kind: criterion.kind(),
             r0,
             sigma_t,
             cohesion: m.cohesion,
             friction_angle: m.friction_angle_deg.to_radians(),
             k_ic: m.k_ic,
             k_iic: m.k_iic,
-            shear: scene.criterion.shear_strength,
-            radius_given: scene.criterion.r0.is_some(),
+            shear: criterion.shear_strength(),
+            radius_given: criterion.r0().is_some(),
         }
     }
 
@@ -129,7 +131,7 @@ impl CriterionParams {
 
     /// Friction coefficient and cohesion (Pa) of the shear branch at a tip
     /// of a crack with `faces`, or `None` where the branch does not apply:
-    /// see [`ShearStrength`].
+    /// see [`ShearStrength`] (and none for MTS).
     ///
     /// The `Faces` envelope is the crack's own faces extending in shear, a
     /// sliding mechanism: it needs those faces in contact next to the tip.
@@ -141,7 +143,7 @@ impl CriterionParams {
     /// back in tension from the closed segment that left: a zig-zag
     /// instead of wings parallel to the load.
     pub fn shear_envelope(&self, faces: Faces) -> Option<(f64, f64)> {
-        match self.shear {
+        match self.shear? {
             ShearStrength::Faces if !faces.closed => None,
             ShearStrength::Faces => Some((
                 faces.friction,
@@ -465,7 +467,7 @@ mod tests {
             friction_angle: 49f64.to_radians(),
             k_ic: 1e6,
             k_iic: 2e6,
-            shear: ShearStrength::Faces,
+            shear: Some(ShearStrength::Faces),
             radius_given: true,
         };
         let s = Sifs {

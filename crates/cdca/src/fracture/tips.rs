@@ -86,7 +86,7 @@ pub fn evaluate_tips(
     u: &[f64],
     states: &[FaceState],
     params: &CriterionParams,
-    sampling: Sampling,
+    sampling: Option<Sampling>,
 ) -> Evaluation {
     let field = Field { xfem: x, u };
     let tractions = face_tractions(x, states);
@@ -99,10 +99,14 @@ pub fn evaluate_tips(
             cohesion: crack.cohesion,
             closed: closed_near_tip(x, states, c, &frame),
         };
+        // no circle for a criterion that reads none (MTS)
         let circle = match sampling {
-            Sampling::Field => sample_field(&frame, params.r0, &|p| field.stress_averaged_at(p)),
-            Sampling::Williams => sample_williams(&s, params.r0),
-            Sampling::Hybrid => sample_hybrid(
+            None => Circle::default(),
+            Some(Sampling::Field) => {
+                sample_field(&frame, params.r0, &|p| field.stress_averaged_at(p))
+            }
+            Some(Sampling::Williams) => sample_williams(&s, params.r0),
+            Some(Sampling::Hybrid) => sample_hybrid(
                 &s,
                 uniform_stress(&s, face_stress(x, &tractions, c, &frame)),
                 params.r0,

@@ -249,6 +249,11 @@ pub enum ShearStrength {
     Rock,
 }
 
+/// The criterion settings as the file writes them (SPEC §10's flat form).
+/// A setting the kind would not read is refused when the file becomes a
+/// [`Scene`](crate::scene::Scene) ([`CriterionSpec::settings`], which gives
+/// the tagged [`Criterion`](crate::scene::Criterion)); `sampling` and
+/// `shear_strength` are left out of the file when not given.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CriterionSpec {
@@ -260,10 +265,14 @@ pub struct CriterionSpec {
     /// (`CriterionParams::for_crack`).
     #[serde(default)]
     pub r0: Option<f64>,
-    #[serde(default)]
-    pub sampling: Sampling,
-    #[serde(default)]
-    pub shear_strength: ShearStrength,
+    /// Where the circle's stresses come from (comprehensive only; `None`:
+    /// the default, hybrid).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sampling: Option<Sampling>,
+    /// The shear branch's envelope (comprehensive only; `None`: the
+    /// default, the faces').
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shear_strength: Option<ShearStrength>,
 }
 
 /// How the load follows the growth (SPEC §9 "Control").

@@ -7,12 +7,14 @@
 //! The bottom of the crate: uses only [`error`](crate::error); everything
 //! else reads scenes.
 
+mod criterion;
 mod file;
 mod param;
 mod resume;
 mod valid;
 mod validate;
 
+pub use criterion::{Criterion, CriterionFields};
 pub use file::{
     ArcSpec, Boundary, ContactUpdate, CrackSpec, CriterionKind, CriterionSpec, DIRECT_TOLERANCE,
     Fix, GrowthControl, GrowthSpec, Material, MeshSpec, Ordering, Plane, PointSupport, Sampling,

@@ -8,6 +8,7 @@ use std::ops::Deref;
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
+use super::criterion::Criterion;
 use super::file::{CrackSpec, SceneFile};
 use super::resume::Resume;
 use crate::error::SceneError;
@@ -16,7 +17,11 @@ use crate::error::SceneError;
 /// through `Deref`); changes go through [`edit`](Self::edit), which checks
 /// the result. Serialises exactly as the file.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Scene(SceneFile);
+pub struct Scene {
+    file: SceneFile,
+    /// The file's criterion settings as the tagged type.
+    criterion: Criterion,
+}
 
 impl TryFrom<SceneFile> for Scene {
     type Error = SceneError;
@@ -25,7 +30,8 @@ impl TryFrom<SceneFile> for Scene {
     /// field (a dotted JSON path) and the value.
     fn try_from(file: SceneFile) -> Result<Self, SceneError> {
         file.validate()?;
-        Ok(Self(file))
+        let criterion = file.criterion.settings()?;
+        Ok(Self { file, criterion })
     }
 }
 
@@ -33,7 +39,7 @@ impl Deref for Scene {
     type Target = SceneFile;
 
     fn deref(&self) -> &SceneFile {
-        &self.0
+        &self.file
     }
 }
 
@@ -47,33 +53,38 @@ impl Scene {
     /// The scene with `change` applied, checked: the checked setter of any
     /// field. `self` is unchanged either way.
     pub fn edit(&self, change: impl FnOnce(&mut SceneFile)) -> Result<Self, SceneError> {
-        let mut file = self.0.clone();
+        let mut file = self.file.clone();
         change(&mut file);
         Self::try_from(file)
     }
 
     /// The file, to be edited freely (and checked again by `try_from`).
     pub fn into_file(self) -> SceneFile {
-        self.0
+        self.file
+    }
+
+    /// The criterion with exactly the settings its kind reads.
+    pub fn criterion_settings(&self) -> Criterion {
+        self.criterion
     }
 
     /// Replaces the cracks by polylines the solver grew from valid ones
     /// (each point inside the specimen, segments of positive length), so the
     /// scene stays valid.
     pub(crate) fn set_grown_cracks(&mut self, cracks: Vec<CrackSpec>) {
-        self.0.cracks = cracks;
+        self.file.cracks = cracks;
     }
 
     /// Records where a growth run stands ([`Resume`], built by the solver
     /// from valid values).
     pub(crate) fn set_resume(&mut self, resume: Resume) {
-        self.0.growth.resume = Some(resume);
+        self.file.growth.resume = Some(resume);
     }
 }
 
 impl Serialize for Scene {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        self.0.serialize(serializer)
+        self.file.serialize(serializer)
     }
 }
 

@@ -229,6 +229,7 @@ impl SceneFile {
     }
 
     fn validate_settings(&self) -> Check {
+        self.criterion.settings()?;
         if let Some(r0) = self.criterion.r0 {
             positive_quantity("criterion.r0", r0)?;
         }
@@ -455,7 +456,8 @@ mod tests {
         "right": { "kind": "traction", "normal": -2e6, "shear": 1e5 },
         "points": [{ "at": [0.3, 0.3], "fix": "x" }]
       },
-      "criterion": { "kind": "mts_t", "r0": 0.03, "sampling": "williams" },
+      "criterion": { "kind": "comprehensive", "r0": 0.03, "sampling": "williams",
+        "shear_strength": "rock" },
       "growth": { "increment": 0.01, "load_steps": 5, "max_growth_per_step": 3, "max_steps": 50 },
       "solver": { "kind": "cg", "tolerance": 1e-10, "max_iterations": 1000, "omega": 1.2,
         "ordering": "red_black", "contact_tolerance": 1e-8, "max_contact_iterations": 50 }

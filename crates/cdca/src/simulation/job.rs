@@ -3,7 +3,8 @@
 //! automaton with the contact states updated in its sweeps.
 
 use crate::contact::in_sweep::InSweep;
-use crate::contact::iteration::{ContactSolve, Reached};
+use crate::contact::iteration::ContactSolve;
+use crate::contact::status::Reached;
 
 /// The solve in progress: how the contact states are updated.
 pub(super) enum Job {

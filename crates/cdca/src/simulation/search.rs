@@ -23,8 +23,8 @@
 
 use web_time::Instant;
 
-use crate::contact::iteration::ContactInfo;
 use crate::contact::law::FaceState;
+use crate::contact::status::ContactInfo;
 use crate::fracture::criterion::{Circle, Faces};
 use crate::report::TipReport;
 use crate::solvers::relaxation::ResidualSample;

@@ -43,7 +43,7 @@ impl Simulation {
             &self.state.u,
             &self.state.faces,
             &self.criterion_params(),
-            self.model.scene.criterion.sampling,
+            self.model.scene.criterion_settings().sampling(),
         );
         self.scratch.tips = e.tips;
         self.scratch.circles = e.circles;

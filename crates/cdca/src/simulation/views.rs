@@ -137,9 +137,15 @@ impl Simulation {
             .collect()
     }
 
-    /// σ_θθ and τ_rθ around tip `index` of `tips()`.
+    /// σ_θθ and τ_rθ around tip `index` of `tips()`; `None` for MTS, which
+    /// reads no circle.
     pub fn criterion_curve(&self, index: usize) -> Option<CriterionCurve> {
-        let c = self.scratch.circles.get(index)?;
+        // MTS reads no circle
+        let c = self
+            .scratch
+            .circles
+            .get(index)
+            .filter(|c| !c.theta.is_empty())?;
         let tip = self.scratch.tips.get(index)?;
         let p = self
             .criterion_params()

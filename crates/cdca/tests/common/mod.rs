@@ -1,6 +1,9 @@
 //! Scene builders and a one-call solve shared by the verification tests.
 #![allow(dead_code)]
 
+#[path = "../support/docs_row.rs"]
+pub mod docs_row;
+
 use cdca::Simulation;
 use cdca::report::SolveReport;
 use cdca::scene::{

@@ -10,8 +10,10 @@
 # m, and the same modes, steps and outcome). `--scaling` instead times the
 # first STEPS steps of the single flaw and the coplanar pair at 60², 100²,
 # 200² and 300² (this build, and BASELINE if given). Writes
-# bench-out/growth_vs.csv or bench-out/growth_scaling.csv. A benchmark, not
-# a test: times depend on the machine and its load.
+# bench-out/growth_vs.csv or bench-out/growth_scaling.csv, and the rows of
+# the tables growth-cost and growth-scaling in docs/benchmarks.md to
+# target/docs/ (`bash scripts/docs.sh` puts them in). A benchmark, not a
+# test: times depend on the machine and its load.
 # Usage: BASELINE=path/to/old/cdca RUNS=3 bash scripts/bench_growth_vs.sh
 #        BASELINE=... STEPS=8 bash scripts/bench_growth_vs.sh --scaling
 set -euo pipefail
@@ -78,7 +80,7 @@ if "--scaling" in sys.argv[1:]:
                          f"{1e3 * wall / k:.0f}", f"{wall / before:.2f}", f"{1e3 * cold:.0f}",
                          f"{wall / k / cold:.2f}"))
             print(rows[-1], flush=True)
-    out = "bench-out/growth_scaling.csv"
+    out, table = "bench-out/growth_scaling.csv", "growth-scaling"
 else:
     scenes = [f"assets/scenes/specimen_two_flaws_{s}.json" for s in ("coplanar", "stepped", "overlapping")]
     scenes += ["assets/scenes/specimen_single_flaw.json",
@@ -103,7 +105,7 @@ else:
                      f"{after / before:.2f}", f"{1e3 * after / k:.0f}", f"{1e3 * cold:.0f}",
                      f"{after / k / cold:.2f}", f"{lam:.1e}", f"{pts:.1e}", modes))
         print(rows[-1], flush=True)
-    out = "bench-out/growth_vs.csv"
+    out, table = "bench-out/growth_vs.csv", "growth-cost"
 print("| " + " | ".join(head) + " |")
 print("|" + " --- |" * len(head))
 for r in rows:
@@ -112,5 +114,12 @@ with open(out, "w") as f:
     f.write(",".join(h.replace(" ", "_").replace("/", "per") for h in head) + "\n")
     for r in rows:
         f.write(",".join(map(str, r)) + "\n")
-print(f"wrote {out}")
+rows_dir = os.path.join(os.environ.get("CARGO_TARGET_DIR", "target"), "docs", table)
+os.makedirs(rows_dir, exist_ok=True)
+for name in os.listdir(rows_dir):
+    os.remove(os.path.join(rows_dir, name))
+for i, r in enumerate(rows):
+    with open(os.path.join(rows_dir, f"{i:02d}.md"), "w") as f:
+        f.write("| " + " | ".join(map(str, r)) + " |\n")
+print(f"wrote {out} and the rows of {table} in {rows_dir}")
 PY

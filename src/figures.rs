@@ -171,9 +171,19 @@ fn angles(view: &SolutionView) -> Option<Figure> {
 /// ligament, next to a support or the loaded side, needs a higher load),
 /// and one after which fewer tips are free (a wing left the specimen or
 /// ended on a crack). Beside it, dashed, the load factor at which the rock
-/// away from the cracks reaches its own strength.
+/// away from the cracks reaches its own strength. A last step that grew
+/// nothing because the λ_cr search reached `growth.max_load_factor` is a
+/// note at the last growth, not a point: its λ (the cap, say 100) would
+/// flatten the reached range.
 fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure> {
-    let h = &view.history;
+    let all = &view.history;
+    let capped =
+        view.load_cap.is_some() && all.len() > 1 && all.last().is_some_and(|s| s.grown.is_empty());
+    let h = if capped {
+        &all[..all.len() - 1]
+    } else {
+        &all[..]
+    };
     if h.is_empty() {
         return None;
     }
@@ -204,6 +214,15 @@ fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure>
                 ),
             }),
     );
+    if let (true, Some(cap), Some(last)) = (capped, &view.load_cap, h.last()) {
+        notes.push(Note {
+            at: point(last),
+            text: format!(
+                "then no tip grew up to the cap λ = {} (growth.max_load_factor): the run stopped",
+                cap.max_load_factor
+            ),
+        });
+    }
     let mut series = vec![Series {
         name: "λ of each growth step".to_owned(),
         colour: colour(0),

@@ -3,7 +3,7 @@
 //! copy, so panels and the canvas never call into the solver; the runner
 //! refreshes it after each piece of solver work.
 
-use cdca::report::{GrowthStepReport, IntactRockReport, Outcome, TipReport};
+use cdca::report::{GrowthStepReport, IntactRockReport, LoadCapReport, Outcome, TipReport};
 use cdca::scene::SolverKind;
 use cdca::{ContactPointView, ContactState, RelaxStatus, ResidualSample, Simulation};
 use egui_plot::PlotPoint;
@@ -37,6 +37,9 @@ pub struct SolutionView {
     pub history: Vec<GrowthStepReport>,
     pub load_factor: f64,
     pub outcome: Option<Outcome>,
+    /// The growth run ended at `growth.max_load_factor` (critical control):
+    /// no free tip meets its criterion below it.
+    pub load_cap: Option<LoadCapReport>,
     /// Status of the current relaxation, if one ran.
     pub relax: Option<RelaxStatus>,
     /// The linear solver behind `relax` and the residual samples (during
@@ -80,6 +83,7 @@ impl SolutionView {
         self.cracks = sim.cracks();
         self.load_factor = sim.load_factor();
         self.outcome = sim.growth_finished();
+        self.load_cap = sim.load_cap();
         let history = sim.history();
         if history.len() != self.history.len() {
             self.history = history.to_vec();

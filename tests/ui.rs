@@ -1479,6 +1479,11 @@ fn a_run_that_cuts_the_specimen_through_says_it_split_and_keeps_the_last_field()
         text: SPLITTING_SCENE.to_owned(),
     });
     h.run_steps(3);
+    // the opened scene's solve first: it removes the contact settings (every
+    // face is open), which moves the buttons below them, and a click sent
+    // meanwhile (on a loaded machine) went to the wrong widget
+    run_until_paused(&mut h, 2000);
+    h.run_steps(1);
     h.get_by_label("Run growth").click();
     h.run_steps(2);
     run_until_paused(&mut h, 5000);

@@ -259,13 +259,8 @@ impl Canvas {
         } else if (response.double_clicked() || enter)
             && let Some(crack) = editor.finish_drawing()
         {
-            let mut s = scene.clone();
-            s.cracks.push(crack);
-            editor.selected_crack = Some(s.cracks.len() - 1);
-            cmds.push(Command::SetScene {
-                scene: Box::new(s),
-                ongoing: false,
-            });
+            editor.selected_crack = Some(scene.cracks.len());
+            cmds.push(Command::AddCrack(Box::new(crack)));
         }
     }
 

@@ -122,7 +122,9 @@ fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut V
             }
         }
     });
-    let height = ui.available_height().max(MIN_PLOT_HEIGHT);
+    // the notes' lines below the plot keep their room
+    let notes = fig.notes.len() as f32 * (ui.text_style_height(&egui::TextStyle::Small) + 4.0);
+    let height = (ui.available_height() - notes).max(MIN_PLOT_HEIGHT);
     let kind = fig.y_ticks;
     let x_min_step = if fig.x_whole { 1.0 } else { 0.0 };
     let mut plot = Plot::new(&fig.id)
@@ -184,17 +186,22 @@ fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut V
         for (name, x, colour) in &fig.vlines {
             plot.vline(VLine::new(name, *x).color(*colour));
         }
-        for n in &fig.notes {
+        // numbered marks on the plot, their words below it: notes at
+        // nearby points used to run into each other
+        for (i, n) in fig.notes.iter().enumerate() {
             plot.text(
                 Text::new(
                     "note",
                     PlotPoint::new(n.at[0], n.at[1]),
-                    RichText::new(format!("◀ {}", n.text)).small(),
+                    RichText::new(format!("◀ {}", i + 1)).small().strong(),
                 )
                 .anchor(egui::Align2::LEFT_CENTER),
             );
         }
     });
+    for (i, n) in fig.notes.iter().enumerate() {
+        ui.small(format!("{}: {}", i + 1, n.text));
+    }
 }
 
 /// A legend entry's sample of the series: its line, dashes or marker (a

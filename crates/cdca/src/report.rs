@@ -150,6 +150,33 @@ pub struct GrowReport {
     /// With outcome `error`: the step that failed and why.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
+    /// Under critical control, a run that ended `completed` because no
+    /// free tip meets its criterion at any λ up to `growth.max_load_factor`:
+    /// that cap, and the sentence saying so.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub load_cap: Option<LoadCapReport>,
+}
+
+/// A growth run stopped by `growth.max_load_factor` (critical control).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct LoadCapReport {
+    /// `growth.max_load_factor`, the highest λ the λ_cr search tries.
+    pub max_load_factor: f64,
+    /// What stopped the run, in words.
+    pub reason: String,
+}
+
+impl LoadCapReport {
+    /// The report of a run stopped at `max_load_factor`.
+    pub fn at(max_load_factor: f64) -> Self {
+        Self {
+            max_load_factor,
+            reason: format!(
+                "stopped at the load cap growth.max_load_factor = {max_load_factor}: no free \
+                 tip meets its criterion at any load factor below it"
+            ),
+        }
+    }
 }
 
 /// How a growth run ended.

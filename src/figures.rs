@@ -304,7 +304,7 @@ fn race_figure(race: &Race) -> Figure {
 /// factor at which the rock away from the cracks reaches its strength.
 fn study_figures(study: &Study) -> Vec<Figure> {
     let (unit, factor) = param_unit(&study.path);
-    let x_label = format!("{} [{unit}]", study.path);
+    let x_label = format!("{} [{unit}]", crate::study::path_label(&study.path));
     let modes = [
         (cdca::report::Mode::Tension, "tension"),
         (cdca::report::Mode::Shear, "shear"),

@@ -538,10 +538,15 @@ impl Task for Runner {
                 }
                 Ok(slice.progress)
             }
-            Err(SolveError::NotPositiveDefinite { .. }) if final_solve => {
+            Err(SolveError::NotPositiveDefinite { .. })
+                if final_solve || sim.free_piece().is_some() =>
+            {
+                let piece = sim.free_piece();
                 self.refresh(false, None);
                 self.view.mark_split();
+                self.view.free_piece = piece;
                 self.run = None;
+                self.direct_solve = None;
                 Ok(Progress::Finished)
             }
             Err(e) => {

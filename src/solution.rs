@@ -52,6 +52,9 @@ pub struct SolutionView {
     /// stiffness against a piece's rigid motion), and the field shown is
     /// the last solved state, at the last step's load factor.
     pub split: bool,
+    /// The piece the cracks cut off with nothing holding it, when the
+    /// last solve found one (then `split`).
+    pub free_piece: Option<cdca::report::FreePieceReport>,
     /// The rock away from the cracks against its strength, when solved.
     pub intact_rock: Option<IntactRockReport>,
     /// Which convergence test failed, in the solver's words
@@ -73,6 +76,7 @@ impl SolutionView {
         self.version += 1;
         self.solved = solved;
         self.split = false;
+        self.free_piece = None;
         self.live = !solved && sim.is_relaxing();
         self.relax = relax;
         self.failure = relax
@@ -106,6 +110,12 @@ impl SolutionView {
             self.contact = sim.contact_points();
         } else {
             self.contact.clear();
+        }
+        // a solve with a piece held by nothing is no solution: shown split
+        if solved && let Some(piece) = sim.free_piece() {
+            self.free_piece = Some(piece);
+            self.mark_split();
+            return;
         }
         if solved {
             self.closed_at_last_solve = (!self.contact.is_empty()).then(|| {

@@ -252,11 +252,11 @@ fn study_ui(
     ui.horizontal_wrapped(|ui| {
         let label = ui.label("Parameter");
         egui::ComboBox::from_id_salt("study path")
-            .selected_text(setup.path.clone())
+            .selected_text(crate::study::path_label(&setup.path))
             .show_ui(ui, |ui| {
                 // only the fields this scene has (no traction on a free side)
                 for p in scene.params(&SUGGESTED_PATHS) {
-                    ui.selectable_value(&mut setup.path, p.to_owned(), p);
+                    ui.selectable_value(&mut setup.path, p.to_owned(), crate::study::path_label(p));
                 }
             })
             .response

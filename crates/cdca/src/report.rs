@@ -17,6 +17,43 @@ pub struct SolveReport {
     /// for a rock without cohesion, see `RockStrength::of_material`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub intact_rock: Option<IntactRockReport>,
+    /// A piece of the specimen that nothing holds (cut off by cracks whose
+    /// faces are open, with no support): the solve is then no solution,
+    /// and not `converged`, whatever the linear solver reported.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub free_piece: Option<FreePieceReport>,
+}
+
+/// A piece of the specimen cut off by cracks and held by nothing: no
+/// supported side, no point support, no crack face in contact with the
+/// rest ([`Simulation::free_piece`](crate::Simulation::free_piece)).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct FreePieceReport {
+    /// Elements in the piece.
+    pub elements: usize,
+    /// Centre of the piece's elements, m.
+    pub centroid: [f64; 2],
+    /// The cracks (indices into the scene's `cracks`) that cut it off.
+    pub cracks: Vec<usize>,
+}
+
+impl FreePieceReport {
+    /// The piece in words.
+    pub fn describe(&self) -> String {
+        let cracks: Vec<String> = self.cracks.iter().map(|c| format!("cracks[{c}]")).collect();
+        format!(
+            "{} cut off a piece of {} elements around ({:.4}, {:.4}) m that no support or \
+             crack face in contact holds",
+            if cracks.is_empty() {
+                "the cracks".to_owned()
+            } else {
+                cracks.join(" and ")
+            },
+            self.elements,
+            self.centroid[0],
+            self.centroid[1]
+        )
+    }
 }
 
 /// The rock away from the cracks (elements with no enriched node) against
@@ -281,7 +318,7 @@ impl SolveReport {
     /// Whether the solve can be trusted: the linear solver and the contact
     /// iteration both converged.
     pub fn converged(&self) -> bool {
-        self.solver.converged && self.contact.converged
+        self.solver.converged && self.contact.converged && self.free_piece.is_none()
     }
 
     /// One line naming the convergence test that failed, if any: the
@@ -289,7 +326,12 @@ impl SolveReport {
     /// that break the contact law once the states settled.
     pub fn failure(&self) -> Option<String> {
         let (s, c) = (&self.solver, &self.contact);
-        if !s.converged {
+        if let Some(p) = &self.free_piece {
+            Some(format!(
+                "the specimen is split: {}, so it has no equilibrium",
+                p.describe()
+            ))
+        } else if !s.converged {
             Some(format!(
                 "the {} solver stopped at {} iterations with relative residual {:.3e} \
                  above its tolerance (solver.tolerance, solver.max_iterations)",

@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 use egui::Color32;
 
 use crate::compare::Race;
-use crate::figure::{Figure, Note, Series, Style, YTicks};
+use crate::figure::{COMPACT_CUT, Figure, Note, Series, Style, YTicks};
 use crate::plot_tab::PlotTab;
 use crate::solution::SolutionView;
 use crate::study::{Study, param_unit};
@@ -266,6 +266,7 @@ fn race_figure(race: &Race) -> Figure {
         y_label: "relative error [–], log".to_owned(),
         y_ticks: YTicks::Log,
         include_y: vec![0.0, crate::compare::ENERGY_FLOOR.log10()],
+        compact_legend: true,
         ..Figure::default()
     };
     for (i, run) in race.runs.iter().enumerate() {
@@ -284,13 +285,13 @@ fn race_figure(race: &Race) -> Figure {
         };
         let pts = |v: &[egui_plot::PlotPoint]| v.iter().map(|p| [p.x, p.y]).collect();
         fig.series.push(Series {
-            name: format!("{name}, energy-norm error"),
+            name: format!("{name}{COMPACT_CUT}energy-norm error"),
             colour: c,
             style: Style::Line,
             points: pts(&run.energy_points),
         });
         fig.series.push(Series {
-            name: format!("{name}, K error"),
+            name: format!("{name}{COMPACT_CUT}K error"),
             colour: c,
             style: Style::Dashed,
             points: pts(&run.k_points),
@@ -384,6 +385,19 @@ mod tests {
 
     /// The specimen: 30 mm square.
     const SIZE: [f64; 2] = [0.03, 0.03];
+
+    /// The race's legend is one entry per iterative solver (its energy and
+    /// K errors share a colour; the line styles are said once beside the
+    /// legend), not two long entries per solver.
+    #[test]
+    fn the_race_legend_has_one_entry_per_solver() {
+        let scene = cdca::Scene::try_from(crate::scenes::default_scene()).expect("valid");
+        let fig = race_figure(&Race::new(&scene, 1.0));
+        assert_eq!(fig.series.len(), 8);
+        let names: Vec<&str> = fig.legend().map(|s| fig.legend_name(s)).collect();
+        assert_eq!(names.len(), 4, "{names:?}");
+        assert!(names.iter().all(|n| !n.contains("error")), "{names:?}");
+    }
 
     fn step(step: usize, lambda: f64, free_tips: usize, angle: f64) -> GrowthStepReport {
         GrowthStepReport {

@@ -103,7 +103,7 @@ fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut V
     ui.horizontal_wrapped(|ui| {
         for s in fig.legend() {
             swatch(ui, s.colour, Some(s.style));
-            ui.label(&s.name);
+            ui.label(fig.legend_name(s));
         }
         for (name, _, colour) in &fig.vlines {
             swatch(ui, *colour, None);

@@ -331,6 +331,9 @@ impl Canvas {
             );
         }
         symbols::paint_tips(painter, &view, &input.solution.tips, input.selected_tip);
+        if !input.solution.tips.is_empty() {
+            symbols::paint_tip_key(painter, view.rect);
+        }
         if editor.tool == Tool::Select {
             symbols::paint_handles(painter, &view, scene, hovered_vertex);
         }

@@ -8,7 +8,9 @@
 //! saying how to fill it.
 
 use egui::{Color32, Pos2, ProgressBar, RichText, Sense, Stroke, Ui, Vec2};
-use egui_plot::{GridInput, Line, LineStyle, Plot, PlotPoint, PlotPoints, Points, Text, VLine};
+use egui_plot::{
+    AxisHints, GridInput, Line, LineStyle, Plot, PlotPoint, PlotPoints, Points, Text, VLine,
+};
 
 use crate::command::{Command, Export, PlotFormat};
 use crate::compare::Race;
@@ -127,8 +129,21 @@ fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut V
     let height = (ui.available_height() - notes).max(MIN_PLOT_HEIGHT);
     let kind = fig.y_ticks;
     let x_min_step = if fig.x_whole { 1.0 } else { 0.0 };
+    // the x axis's tick labels at the spacing the grid spacer gives them:
+    // egui_plot's default hides x labels closer than 60 px, which left the
+    // Study plots (about 200 px wide) without a single number on x
+    let x_axis = AxisHints::new_x()
+        .label(fig.x_label.as_str())
+        .label_spacing(0.75 * LABEL_SPACING as f32..=LABEL_SPACING as f32)
+        .formatter(move |m, _| {
+            if m.step_size < x_min_step {
+                String::new()
+            } else {
+                tick_label(YTicks::Decimal, m.value, m.step_size)
+            }
+        });
     let mut plot = Plot::new(&fig.id)
-        .x_axis_label(&fig.x_label)
+        .custom_x_axes(vec![x_axis])
         .y_axis_label(&fig.y_label)
         .y_axis_min_width(Y_AXIS_WIDTH)
         .height(height)
@@ -137,13 +152,6 @@ fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut V
         .grid_spacing(GRID_MIN..=300.0)
         .x_grid_spacer(spacer(YTicks::Decimal, x_min_step))
         .y_grid_spacer(spacer(kind, 0.0))
-        .x_axis_formatter(move |m, _| {
-            if m.step_size < x_min_step {
-                String::new()
-            } else {
-                tick_label(YTicks::Decimal, m.value, m.step_size)
-            }
-        })
         .y_axis_formatter(move |m, _| tick_label(kind, m.value, m.step_size));
     for y in &fig.include_y {
         plot = plot.include_y(*y);

@@ -16,11 +16,13 @@ use crate::compare::{self, Race};
 use crate::edit::{Editor, UndoStack};
 use crate::field::{FieldKey, FieldKind};
 use crate::frame_stats::FrameStats;
+use crate::job::{Job, Waiting};
 use crate::panels;
+use crate::path_prompt::PathPrompt;
 use crate::persist::Persisted;
 use crate::plot_tab::PlotTab;
 use crate::run::RunMode;
-use crate::runner::Runner;
+use crate::runner::{FieldTask, Runner};
 use crate::scenes;
 use crate::study::{Study, StudySetup};
 use crate::task::{Progress, Task};
@@ -44,6 +46,9 @@ pub struct Options {
     pub view: ViewSettings,
     /// A run to start after the first solve (command line `--run`).
     pub start_run: Option<StartRun>,
+    /// Native file dialogs are tried (false: Save and Open ask for a path
+    /// at once, as where no dialog service exists).
+    pub file_dialogs: bool,
 }
 
 /// A run the app starts by itself (`cdca-workbench SCENE --run relax|grow`,
@@ -69,6 +74,7 @@ impl Default for Options {
             scene_source: scenes::DEFAULT_TITLE.to_owned(),
             view: ViewSettings::default(),
             start_run: None,
+            file_dialogs: true,
         }
     }
 }
@@ -103,6 +109,22 @@ pub struct WorkbenchApp {
     pub(crate) study_setup: StudySetup,
     pub(crate) options: Options,
     pub(crate) started: bool,
+    /// A job asked for while another held the slot: it starts when the
+    /// slot frees, or at once if the user cancels the running job.
+    pub(crate) waiting: Option<Waiting>,
+    /// The path field shown where no file dialog could open.
+    pub(crate) path_prompt: Option<PathPrompt>,
+    /// The scene as last opened (the default file name says `_edited` once
+    /// the scene differs from it).
+    pub(crate) opened_scene: SceneFile,
+    /// The crack the last edit changed (a drawn crack takes its contact
+    /// law).
+    pub(crate) last_edited_crack: Option<usize>,
+    /// A drag of the scene is under way (its edits are `ongoing`).
+    pub(crate) dragging: bool,
+    /// A job the command line asked for, started once the first solve has
+    /// freed the slot.
+    pub(crate) queued: Option<Command>,
     pub(crate) frame_stats: FrameStats,
     frame_start: Option<Instant>,
     /// Time the frame's tasks took, s.
@@ -116,6 +138,7 @@ impl WorkbenchApp {
     pub fn new(options: Options) -> Self {
         let scene = options.scene.clone().unwrap_or_else(scenes::default_scene);
         let plot_tab = PlotTab::fitting(&scene);
+        let opened_scene = scene.clone();
         let mut runner = Runner::default();
         let message = runner.invalidate(&scene).err().map(Message::Error);
         Self {
@@ -138,6 +161,12 @@ impl WorkbenchApp {
             study_setup: StudySetup::default(),
             options,
             started: false,
+            waiting: None,
+            path_prompt: None,
+            opened_scene,
+            last_edited_crack: None,
+            dragging: false,
+            queued: None,
             frame_stats: FrameStats::default(),
             frame_start: None,
             frame_solver_seconds: 0.0,
@@ -193,6 +222,39 @@ impl WorkbenchApp {
     }
     pub fn run_mode(&self) -> RunMode {
         self.runner.mode()
+    }
+    /// The job holding the slot, if one runs.
+    pub fn running_job(&self) -> Option<Job> {
+        Job::of_run(self.runner.mode())
+            .or_else(|| {
+                self.race
+                    .as_ref()
+                    .filter(|r| !r.finished())
+                    .map(|_| Job::Race)
+            })
+            .or_else(|| {
+                self.study
+                    .as_ref()
+                    .filter(|s| !s.finished())
+                    .map(|_| Job::Study)
+            })
+    }
+    /// The contact state of every crack-face point shown (empty before a
+    /// solve).
+    pub fn contact_states(&self) -> Vec<cdca::ContactState> {
+        self.runner.view().contact.iter().map(|c| c.state).collect()
+    }
+    /// The free tips of the last solve (SIFs and criterion).
+    pub fn tips(&self) -> &[cdca::report::TipReport] {
+        &self.runner.view().tips
+    }
+    /// The growth run ended at `growth.max_load_factor`, if it did.
+    pub fn load_cap(&self) -> Option<&cdca::report::LoadCapReport> {
+        self.runner.view().load_cap.as_ref()
+    }
+    /// The job asked for while another ran, waiting for the slot.
+    pub fn waiting_job(&self) -> Option<Job> {
+        self.waiting.as_ref().and_then(Waiting::job)
     }
     /// Residual samples of the current relaxation.
     pub fn residual_samples(&self) -> usize {
@@ -349,26 +411,37 @@ impl WorkbenchApp {
                 Some(StartRun::Relax) if !self.options.solve_on_start => {
                     self.run_cmd(ctx, Command::Solve);
                 }
-                Some(StartRun::Grow) => self.run_cmd(ctx, Command::RunGrowth),
-                Some(StartRun::Compare) => self.run_cmd(
-                    ctx,
-                    Command::CompareSolvers {
+                Some(StartRun::Grow) => self.queued = Some(Command::RunGrowth),
+                Some(StartRun::Compare) => {
+                    self.queued = Some(Command::CompareSolvers {
                         time_cap: self.race_time_cap,
-                    },
-                ),
+                    });
+                }
                 Some(StartRun::Study(setup)) => {
                     self.study_setup = setup.clone();
-                    self.run_cmd(ctx, Command::RunStudy(setup));
+                    self.queued = Some(Command::RunStudy(setup));
                 }
                 _ => {}
             }
         }
         self.finish_screenshot(ctx);
         self.run_tasks();
+        // the job that waited (the banner said so), or the command line's
+        // run, as soon as the slot is free: in the frame the running job
+        // ended, so that no frame shows the workbench idle in between
+        if self.running_job().is_none()
+            && let Some(cmd) = self
+                .waiting
+                .take()
+                .map(|w| w.command)
+                .or_else(|| self.queued.take())
+        {
+            self.run_cmd(ctx, cmd);
+        }
         self.refresh_tip_curve();
-        let busy = self.runner.is_running()
-            || self.race.as_ref().is_some_and(|c| !c.finished())
-            || self.study.as_ref().is_some_and(|s| !s.finished())
+        let busy = self.running_job().is_some()
+            || self.queued.is_some()
+            || self.waiting.is_some()
             || self
                 .field_key()
                 .is_some_and(|k| !self.runner.field().is_current(&k));
@@ -377,13 +450,12 @@ impl WorkbenchApp {
         }
     }
 
-    /// The frame's tasks within [`FRAME_BUDGET`], in order: the field the
-    /// canvas shows (the other tasks wait until it is complete, so what is
-    /// shown is consistent and stays shown while they run), then the task
-    /// in progress: a direct solve (it ends within a few frames), else the
-    /// solver race, a study or the runner's run (at most one runs: starting
-    /// the race or a study pauses the runner's other runs); after
-    /// that, a growth step's field at λ_cr at once, before its tips move on.
+    /// The frame's tasks within [`FRAME_BUDGET`]: the field the canvas
+    /// shows, a task like the others (the job waits until it is complete,
+    /// so that what is shown is consistent and stays shown while the job
+    /// runs), then the job holding the slot, if any (one at a time: see
+    /// [`Job`]); after that, a growth step's field at λ_cr at once, before
+    /// its tips move on.
     fn run_tasks(&mut self) {
         let start = Instant::now();
         let deadline = start + FRAME_BUDGET;
@@ -396,27 +468,45 @@ impl WorkbenchApp {
             return;
         }
         let key = self.field_key();
-        if self.runner.sample_field(key, deadline) == Progress::Finished {
-            let task: Option<&mut dyn Task> = if self.runner.is_direct_solving() {
-                Some(&mut self.runner)
-            } else if let Some(race) = self.race.as_mut().filter(|r| !r.finished()) {
-                Some(race)
-            } else if let Some(study) = self.study.as_mut().filter(|s| !s.finished()) {
-                Some(study)
-            } else if self.runner.is_running() {
-                Some(&mut self.runner)
-            } else {
-                None
-            };
-            if let Some(Err(e)) = task.map(|t| t.advance(deadline)) {
+        let mut field = FieldTask::new(&mut self.runner, key);
+        if field.advance(deadline) == Ok(Progress::Finished) {
+            if let Some(Err(e)) = self.job_task().map(|t| t.advance(deadline)) {
                 self.message = Some(Message::Error(e));
             }
             if self.runner.field_due_now() {
                 let key = self.field_key();
-                self.runner.sample_field(key, deadline);
+                let _ = FieldTask::new(&mut self.runner, key).advance(deadline);
             }
         }
         self.frame_solver_seconds = start.elapsed().as_secs_f64();
+    }
+
+    /// The task of the job holding the slot, if one runs.
+    fn job_task(&mut self) -> Option<&mut dyn Task> {
+        match self.running_job()? {
+            Job::Solve | Job::Growth => Some(&mut self.runner),
+            Job::Race => self.race.as_mut().map(|r| r as &mut dyn Task),
+            Job::Study => self.study.as_mut().map(|s| s as &mut dyn Task),
+        }
+    }
+
+    /// Stops the job holding the slot, if any: the runner's run pauses,
+    /// the race and a study stop where they are (what they did stays).
+    pub(crate) fn cancel_job(&mut self) {
+        match self.running_job() {
+            Some(Job::Solve | Job::Growth) => self.runner.pause(),
+            Some(Job::Race) => {
+                if let Some(r) = self.race.as_mut() {
+                    r.cancel();
+                }
+            }
+            Some(Job::Study) => {
+                if let Some(s) = self.study.as_mut() {
+                    s.cancel();
+                }
+            }
+            None => {}
+        }
     }
 
     /// The field the canvas wants, if any: the current solution or
@@ -503,6 +593,9 @@ impl WorkbenchApp {
             pace: self.runner.pace(),
             accelerate_growth: self.runner.accelerate_growth(),
             growth_solver: self.runner.growth_solver_kind(&self.scene),
+            job: self.running_job(),
+            dragging: self.dragging,
+            solves_on_release: self.options.auto_solve && self.runner.solve_is_quick(&self.scene),
         };
         let tip_curve = self
             .tip_curve
@@ -584,6 +677,8 @@ impl WorkbenchApp {
             });
         egui::CentralPanel::default().show(ui, |ui| {
             panels::menu::message_ui(ui, self.message.as_ref(), &mut cmds);
+            panels::menu::waiting_ui(ui, self.waiting.as_ref(), &mut cmds);
+            panels::menu::path_prompt_ui(ui, self.path_prompt.as_mut(), &mut cmds);
             let input = CanvasInput {
                 scene: &self.scene,
                 solution: self.runner.view(),
@@ -629,17 +724,23 @@ impl WorkbenchApp {
             return;
         };
         let cropped = image.region(&rect, Some(ctx.pixels_per_point()));
-        let result = crate::export::png_bytes(&cropped)
-            .and_then(|bytes| crate::io::save_dialog("canvas.png", ("PNG image", "png"), &bytes));
-        self.report_save(result);
-    }
-
-    pub(crate) fn report_save(&mut self, result: Result<Option<String>, String>) {
-        match result {
-            Ok(Some(path)) => self.message = Some(Message::Info(format!("Saved {path}"))),
-            Ok(None) => {}
+        match crate::export::png_bytes(&cropped) {
+            Ok(bytes) => {
+                let name = format!("{}.png", self.file_stem());
+                self.save_bytes(&name, ("PNG image", "png"), bytes);
+            }
             Err(e) => self.message = Some(Message::Error(e)),
         }
+    }
+
+    /// The scene differs from the one last opened.
+    pub fn is_edited(&self) -> bool {
+        self.scene != self.opened_scene
+    }
+
+    /// The path field shown where no file dialog could open: its text.
+    pub fn typed_path(&self) -> Option<&str> {
+        self.path_prompt.as_ref().map(|p| p.path.as_str())
     }
 }
 

@@ -6,6 +6,8 @@ use cdca::scene::SceneFile;
 use crate::app::WorkbenchApp;
 use crate::command::{Command, Export, PlotFormat};
 use crate::compare::Race;
+use crate::job::{Job, Waiting};
+use crate::path_prompt::{PathPrompt, PromptAction};
 use crate::plot_tab::PlotTab;
 use crate::study::Study;
 use crate::view::Message;
@@ -13,20 +15,39 @@ use crate::{export, io, scenes};
 
 impl WorkbenchApp {
     pub(crate) fn run_cmd(&mut self, ctx: &egui::Context, cmd: Command) {
+        // one job at a time: another job asked for while one runs waits for
+        // the user to cancel the running one (a job asked for again
+        // restarts or goes on, as before)
+        if let (Some(wanted), Some(running)) = (Job::of_command(&cmd), self.running_job())
+            && wanted != running
+        {
+            self.waiting = Some(Waiting {
+                running,
+                command: cmd,
+            });
+            return;
+        }
+        if Job::of_command(&cmd).is_some() {
+            self.waiting = None;
+        }
         self.follow_with_plot(&cmd);
         match cmd {
             Command::SetScene { scene, ongoing } => {
+                self.dragging = ongoing;
                 if *scene == self.scene {
                     if !ongoing {
                         self.undo.end_coalescing();
                     }
                     return;
                 }
+                self.note_edited_crack(&scene);
                 self.undo.record(&self.scene, ongoing);
                 self.scene = *scene;
                 self.scene_changed(ongoing);
             }
+            Command::AddCrack(crack) => self.add_crack(ctx, *crack),
             Command::EndDrag => {
+                self.dragging = false;
                 self.undo.end_coalescing();
                 self.scene_changed(false);
             }
@@ -38,11 +59,26 @@ impl WorkbenchApp {
                     self.open_scene_text(b.title.to_owned(), b.json);
                 }
             }
-            Command::OpenDialog => match io::open_scene_dialog() {
-                Ok(Some(file)) => self.open_scene_text(file.name, &file.text),
-                Ok(None) => {}
-                Err(e) => self.message = Some(Message::Error(e)),
-            },
+            Command::OpenDialog => {
+                let picked = if self.options.file_dialogs {
+                    io::open_scene_dialog()
+                } else {
+                    Ok(io::Picked::NoDialog)
+                };
+                match picked {
+                    Ok(io::Picked::Chosen(file)) => self.open_scene_text(file.name, &file.text),
+                    Ok(io::Picked::Cancelled) => {}
+                    Ok(io::Picked::NoDialog) => {
+                        self.path_prompt = Some(PathPrompt {
+                            action: PromptAction::Open,
+                            path: io::default_path(""),
+                        });
+                    }
+                    Err(e) => self.message = Some(Message::Error(e)),
+                }
+            }
+            Command::UseTypedPath => self.use_typed_path(),
+            Command::CancelTypedPath => self.path_prompt = None,
             Command::Export(what) => self.export(ctx, what),
             Command::Undo => {
                 if let Some(s) = self.undo.undo(&self.scene) {
@@ -58,7 +94,8 @@ impl WorkbenchApp {
             }
             Command::Solve => {
                 if self.ensure_simulation() {
-                    self.runner.solve();
+                    let r = self.runner.solve();
+                    self.show_error(r);
                 }
             }
             Command::Step => {
@@ -82,7 +119,6 @@ impl WorkbenchApp {
             Command::SetPace(pace) => self.runner.set_pace(pace),
             Command::SetAccelerateGrowth(on) => self.runner.set_accelerate_growth(on),
             Command::RunStudy(setup) => {
-                self.runner.pause_unless_solving();
                 let accelerate = self.runner.accelerate_growth();
                 let study = self
                     .runner
@@ -107,7 +143,6 @@ impl WorkbenchApp {
                 self.auto_solve();
             }
             Command::CompareSolvers { time_cap } => {
-                self.runner.pause_unless_solving();
                 // the race's reference is the direct solution
                 let checked = self.runner.checked().and_then(|s| {
                     let mut file = cdca::scene::SceneFile::clone(s);
@@ -132,7 +167,63 @@ impl WorkbenchApp {
                 self.no_tip_wanted = tip.is_none();
             }
             Command::DismissMessage => self.message = None,
+            Command::CancelJob => self.cancel_job(),
+            Command::StartWaiting => {
+                if let Some(w) = self.waiting.take() {
+                    self.cancel_job();
+                    self.run_cmd(ctx, w.command);
+                }
+            }
+            Command::DropWaiting => self.waiting = None,
         }
+    }
+
+    /// Remembers which crack an edit changed (the last one changed, when
+    /// the edit keeps the number of cracks): a drawn crack takes its
+    /// contact law.
+    fn note_edited_crack(&mut self, edited: &cdca::scene::SceneFile) {
+        let (old, new) = (&self.scene.cracks, &edited.cracks);
+        if old.len() == new.len()
+            && let Some(i) = (0..new.len()).rev().find(|&i| old[i] != new[i])
+        {
+            self.last_edited_crack = Some(i);
+        }
+    }
+
+    /// Adds a drawn crack with the contact law of the last edited crack
+    /// (else the scene's last crack): a crack drawn beside a μ = 0.5 flaw
+    /// used to get μ = 0. The banner says where its values came from.
+    fn add_crack(&mut self, ctx: &egui::Context, mut crack: cdca::scene::CrackSpec) {
+        let mut scene = self.scene.clone();
+        let from = self
+            .last_edited_crack
+            .filter(|&i| i < scene.cracks.len())
+            .or_else(|| scene.cracks.len().checked_sub(1));
+        let n = scene.cracks.len() + 1;
+        if let Some(i) = from {
+            let source = &scene.cracks[i];
+            crack.friction = source.friction;
+            crack.cohesion = source.cohesion;
+            crack.normal_stiffness = source.normal_stiffness;
+            crack.shear_stiffness = source.shear_stiffness;
+            self.message = Some(Message::Info(format!(
+                "Crack {n} takes friction μ = {} and cohesion {} MPa from crack {}, the last \
+                 edited; change them under Crack {n} in the Scene panel.",
+                crack.friction,
+                crack.cohesion / crate::units::PA_PER_MPA,
+                i + 1
+            )));
+        }
+        scene.cracks.push(crack);
+        self.last_edited_crack = Some(n - 1);
+        self.editor.selected_crack = Some(n - 1);
+        self.run_cmd(
+            ctx,
+            Command::SetScene {
+                scene: Box::new(scene),
+                ongoing: false,
+            },
+        );
     }
 
     /// Shows the plot that fits the run a command starts: the residual for
@@ -195,7 +286,8 @@ impl WorkbenchApp {
                 self.rebuild();
             }
             if self.runner.simulation().is_some() {
-                self.runner.solve();
+                let r = self.runner.solve();
+                self.show_error(r);
             }
         }
     }
@@ -227,6 +319,8 @@ impl WorkbenchApp {
     /// Makes `scene` (checked) the scene being edited, with one undo step.
     fn open_scene(&mut self, source: String, scene: cdca::scene::SceneFile) {
         self.undo.record(&self.scene, false);
+        self.opened_scene = scene.clone();
+        self.last_edited_crack = None;
         self.scene = scene;
         self.scene_source = source;
         self.canvas.fit_requested = true;
@@ -306,22 +400,25 @@ impl WorkbenchApp {
     }
 
     fn export(&mut self, ctx: &egui::Context, what: Export) {
-        let stem = file_stem(&self.scene);
-        let result = match what {
+        let stem = self.file_stem();
+        let file = |name: &str, filter: (&'static str, &'static str), bytes: &[u8]| {
+            Ok((name.to_owned(), filter, bytes.to_vec()))
+        };
+        let result: Result<FileToSave, String> = match what {
             Export::Scene => match self.scene_file() {
-                Ok(json) => io::save_dialog(
+                Ok(json) => file(
                     &format!("{stem}.json"),
                     ("Scene (JSON)", "json"),
                     json.as_bytes(),
                 ),
                 Err(e) => Err(e),
             },
-            Export::CrackPaths => io::save_dialog(
+            Export::CrackPaths => file(
                 &format!("{stem}_cracks.csv"),
                 ("CSV", "csv"),
                 self.crack_paths_csv().as_bytes(),
             ),
-            Export::History => io::save_dialog(
+            Export::History => file(
                 &format!("{stem}_history.csv"),
                 ("CSV", "csv"),
                 self.history_csv().as_bytes(),
@@ -338,7 +435,7 @@ impl WorkbenchApp {
                         |p| sim.displacement_at(p),
                         |p| sim.stress_at(p),
                     );
-                    io::save_dialog(
+                    file(
                         &format!("{stem}.vtu"),
                         ("VTK unstructured grid", "vtu"),
                         vtu.as_bytes(),
@@ -347,7 +444,7 @@ impl WorkbenchApp {
             },
             Export::Race => match &self.race {
                 None => Err("run Compare solvers before exporting the race".to_owned()),
-                Some(race) => io::save_dialog(
+                Some(race) => file(
                     &format!("{stem}_race.csv"),
                     ("CSV", "csv"),
                     race.to_csv().as_bytes(),
@@ -355,7 +452,7 @@ impl WorkbenchApp {
             },
             Export::Study => match &self.study {
                 None => Err("run a study before exporting it".to_owned()),
-                Some(study) => io::save_dialog(
+                Some(study) => file(
                     &format!("{stem}_study.csv"),
                     ("CSV", "csv"),
                     study.to_csv().as_bytes(),
@@ -372,12 +469,12 @@ impl WorkbenchApp {
                 match figures.get(index) {
                     None => Err("nothing to export: the plot is empty".to_owned()),
                     Some(fig) => match format {
-                        PlotFormat::Csv => io::save_dialog(
+                        PlotFormat::Csv => file(
                             &format!("{stem}_{}.csv", fig.id),
                             ("CSV", "csv"),
                             fig.to_csv().as_bytes(),
                         ),
-                        PlotFormat::Svg => io::save_dialog(
+                        PlotFormat::Svg => file(
                             &format!("{stem}_{}.svg", fig.id),
                             ("SVG picture", "svg"),
                             fig.to_svg(900.0, 500.0).as_bytes(),
@@ -387,12 +484,79 @@ impl WorkbenchApp {
             }
             Export::CanvasPng => {
                 self.request_canvas_png(ctx);
-                Ok(None)
+                return;
             }
         };
-        self.report_save(result);
+        match result {
+            Ok((name, filter, bytes)) => self.save_bytes(&name, filter, bytes),
+            Err(e) => self.message = Some(Message::Error(e)),
+        }
+    }
+
+    /// Saves `bytes` through the file dialog (named `name` at first), or,
+    /// where no dialog can open, asks for a path above the canvas.
+    pub(crate) fn save_bytes(&mut self, name: &str, filter: (&str, &str), bytes: Vec<u8>) {
+        let picked = if self.options.file_dialogs {
+            io::save_dialog(name, filter, &bytes)
+        } else {
+            Ok(io::Picked::NoDialog)
+        };
+        match picked {
+            Ok(io::Picked::Chosen(path)) => {
+                self.message = Some(Message::Info(format!("Saved {path}")));
+            }
+            Ok(io::Picked::Cancelled) => {}
+            Ok(io::Picked::NoDialog) => {
+                self.path_prompt = Some(PathPrompt {
+                    action: PromptAction::Save { bytes },
+                    path: io::default_path(name),
+                });
+            }
+            Err(e) => self.message = Some(Message::Error(e)),
+        }
+    }
+
+    /// Uses the path typed where no dialog could open: writes the file or
+    /// opens the scene. The field stays on error, to correct the path.
+    fn use_typed_path(&mut self) {
+        let Some(prompt) = self.path_prompt.take() else {
+            return;
+        };
+        let path = prompt.path.trim().to_owned();
+        match &prompt.action {
+            PromptAction::Save { bytes } => match io::write_file(&path, bytes) {
+                Ok(p) => self.message = Some(Message::Info(format!("Saved {p}"))),
+                Err(e) => {
+                    self.message = Some(Message::Error(e));
+                    self.path_prompt = Some(prompt);
+                }
+            },
+            PromptAction::Open => match io::read_text(std::path::Path::new(&path)) {
+                Ok(file) => self.open_scene_text(file.name, &file.text),
+                Err(e) => {
+                    self.message = Some(Message::Error(e));
+                    self.path_prompt = Some(prompt);
+                }
+            },
+        }
+    }
+
+    /// The default file name: the scene's name, with `_edited` once the
+    /// scene differs from the one opened (its name is still the old
+    /// title's).
+    pub(crate) fn file_stem(&self) -> String {
+        let stem = file_stem(&self.scene);
+        if self.is_edited() {
+            format!("{stem}_edited")
+        } else {
+            stem
+        }
     }
 }
+
+/// A file to save: its default name, its type (description, extension) and
+/// its bytes.
+type FileToSave = (String, (&'static str, &'static str), Vec<u8>);
 
 /// A file name from the scene's name: lowercase letters, digits and `_`.
 fn file_stem(scene: &SceneFile) -> String {

@@ -50,6 +50,9 @@ pub enum Command {
         scene: Box<SceneFile>,
         ongoing: bool,
     },
+    /// Add a drawn crack to the scene, with the contact law (friction,
+    /// cohesion, joint stiffness) of the last edited crack, and say so.
+    AddCrack(Box<cdca::scene::CrackSpec>),
     /// A drag of scene edits ended: the next edit is a new undo step, and
     /// the scene may be re-solved.
     EndDrag,
@@ -105,4 +108,14 @@ pub enum Command {
     /// Inspect tip `i` of the current solution's tips (None: close).
     SelectTip(Option<usize>),
     DismissMessage,
+    /// Use the path typed where no file dialog could open.
+    UseTypedPath,
+    /// Close the path field without saving or opening.
+    CancelTypedPath,
+    /// Stop the job holding the slot (see [`crate::job::Job`]).
+    CancelJob,
+    /// Cancel the running job and start the one that waits for the slot.
+    StartWaiting,
+    /// Forget the job that waits for the slot.
+    DropWaiting,
 }

@@ -70,7 +70,13 @@ pub struct Figure {
     pub include_y: Vec<f64>,
     /// x counts something (growth steps): ticks at whole numbers only.
     pub x_whole: bool,
+    /// One legend entry per colour, named up to [`COMPACT_CUT`] (the race:
+    /// one per solver; which line style is which is said once beside it).
+    pub compact_legend: bool,
 }
+
+/// Where a series' name is cut in a compact legend.
+pub const COMPACT_CUT: &str = " — ";
 
 /// Smallest tick step of `kind` that is at least `min_step`.
 pub fn tick_step(kind: YTicks, min_step: f64) -> f64 {
@@ -126,9 +132,21 @@ impl Figure {
             .iter()
             .enumerate()
             .filter(|(i, s)| {
-                s.style != Style::Gap && !self.series[..*i].iter().any(|t| t.name == s.name)
+                s.style != Style::Gap
+                    && !self.series[..*i]
+                        .iter()
+                        .any(|t| t.name == s.name || (self.compact_legend && t.colour == s.colour))
             })
             .map(|(_, s)| s)
+    }
+
+    /// A series' name in the legend (cut short in a compact legend).
+    pub fn legend_name<'a>(&self, s: &'a Series) -> &'a str {
+        if self.compact_legend {
+            s.name.split(COMPACT_CUT).next().unwrap_or(&s.name)
+        } else {
+            &s.name
+        }
     }
 
     /// The series as CSV, one row per point: `series,x,y` with the axis
@@ -274,7 +292,7 @@ impl Figure {
         }
         let legend = self
             .legend()
-            .map(|s| (s.name.as_str(), s.colour))
+            .map(|s| (self.legend_name(s), s.colour))
             .chain(self.vlines.iter().map(|v| (v.0.as_str(), v.2)));
         for (k, (name, colour)) in legend.enumerate() {
             let y = top + 14.0 + 18.0 * k as f64;

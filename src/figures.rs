@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 use egui::Color32;
 
 use crate::compare::Race;
-use crate::figure::{Figure, Note, Series, Style, YTicks};
+use crate::figure::{COMPACT_CUT, Figure, Note, Series, Style, YTicks};
 use crate::plot_tab::PlotTab;
 use crate::solution::SolutionView;
 use crate::study::{Study, param_unit};
@@ -171,9 +171,19 @@ fn angles(view: &SolutionView) -> Option<Figure> {
 /// ligament, next to a support or the loaded side, needs a higher load),
 /// and one after which fewer tips are free (a wing left the specimen or
 /// ended on a crack). Beside it, dashed, the load factor at which the rock
-/// away from the cracks reaches its own strength.
+/// away from the cracks reaches its own strength. A last step that grew
+/// nothing because the λ_cr search reached `growth.max_load_factor` is a
+/// note at the last growth, not a point: its λ (the cap, say 100) would
+/// flatten the reached range.
 fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure> {
-    let h = &view.history;
+    let all = &view.history;
+    let capped =
+        view.load_cap.is_some() && all.len() > 1 && all.last().is_some_and(|s| s.grown.is_empty());
+    let h = if capped {
+        &all[..all.len() - 1]
+    } else {
+        &all[..]
+    };
     if h.is_empty() {
         return None;
     }
@@ -204,6 +214,15 @@ fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure>
                 ),
             }),
     );
+    if let (true, Some(cap), Some(last)) = (capped, &view.load_cap, h.last()) {
+        notes.push(Note {
+            at: point(last),
+            text: format!(
+                "then no tip grew up to the cap λ = {} (growth.max_load_factor): the run stopped",
+                cap.max_load_factor
+            ),
+        });
+    }
     let mut series = vec![Series {
         name: "λ of each growth step".to_owned(),
         colour: colour(0),
@@ -247,6 +266,7 @@ fn race_figure(race: &Race) -> Figure {
         y_label: "relative error [–], log".to_owned(),
         y_ticks: YTicks::Log,
         include_y: vec![0.0, crate::compare::ENERGY_FLOOR.log10()],
+        compact_legend: true,
         ..Figure::default()
     };
     for (i, run) in race.runs.iter().enumerate() {
@@ -265,13 +285,13 @@ fn race_figure(race: &Race) -> Figure {
         };
         let pts = |v: &[egui_plot::PlotPoint]| v.iter().map(|p| [p.x, p.y]).collect();
         fig.series.push(Series {
-            name: format!("{name}, energy-norm error"),
+            name: format!("{name}{COMPACT_CUT}energy-norm error"),
             colour: c,
             style: Style::Line,
             points: pts(&run.energy_points),
         });
         fig.series.push(Series {
-            name: format!("{name}, K error"),
+            name: format!("{name}{COMPACT_CUT}K error"),
             colour: c,
             style: Style::Dashed,
             points: pts(&run.k_points),
@@ -285,7 +305,7 @@ fn race_figure(race: &Race) -> Figure {
 /// factor at which the rock away from the cracks reaches its strength.
 fn study_figures(study: &Study) -> Vec<Figure> {
     let (unit, factor) = param_unit(&study.path);
-    let x_label = format!("{} [{unit}]", study.path);
+    let x_label = format!("{} [{unit}]", crate::study::path_label(&study.path));
     let modes = [
         (cdca::report::Mode::Tension, "tension"),
         (cdca::report::Mode::Shear, "shear"),
@@ -365,6 +385,19 @@ mod tests {
 
     /// The specimen: 30 mm square.
     const SIZE: [f64; 2] = [0.03, 0.03];
+
+    /// The race's legend is one entry per iterative solver (its energy and
+    /// K errors share a colour; the line styles are said once beside the
+    /// legend), not two long entries per solver.
+    #[test]
+    fn the_race_legend_has_one_entry_per_solver() {
+        let scene = cdca::Scene::try_from(crate::scenes::default_scene()).expect("valid");
+        let fig = race_figure(&Race::new(&scene, 1.0));
+        assert_eq!(fig.series.len(), 8);
+        let names: Vec<&str> = fig.legend().map(|s| fig.legend_name(s)).collect();
+        assert_eq!(names.len(), 4, "{names:?}");
+        assert!(names.iter().all(|n| !n.contains("error")), "{names:?}");
+    }
 
     fn step(step: usize, lambda: f64, free_tips: usize, angle: f64) -> GrowthStepReport {
         GrowthStepReport {

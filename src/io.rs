@@ -14,6 +14,33 @@ pub struct OpenedFile {
     pub text: String,
 }
 
+/// What a file dialog came back with.
+pub enum Picked<T> {
+    Chosen(T),
+    /// The user closed the dialog.
+    Cancelled,
+    /// No dialog could open (natively: no desktop portal and no zenity, so
+    /// rfd returns at once with nothing): the app asks for a path instead.
+    NoDialog,
+}
+
+/// A dialog that came back empty sooner than this never opened, s: no one
+/// closes a file dialog this fast (without a dialog service rfd returns in
+/// well under a millisecond).
+#[cfg(not(target_arch = "wasm32"))]
+const NO_DIALOG_SECONDS: f64 = 0.15;
+
+/// `Cancelled`, or `NoDialog` when the dialog started at `start` came back
+/// too soon to have been shown.
+#[cfg(not(target_arch = "wasm32"))]
+fn nothing_picked<T>(start: web_time::Instant) -> Picked<T> {
+    if start.elapsed().as_secs_f64() < NO_DIALOG_SECONDS {
+        Picked::NoDialog
+    } else {
+        Picked::Cancelled
+    }
+}
+
 /// Asks for a scene file and reads it. `Ok(None)` when the user cancels.
 /// Copies a scene link's fragment (`scene=…`) to the clipboard; returns
 /// what to tell the user.
@@ -28,15 +55,30 @@ pub fn share_link(ctx: &egui::Context, fragment: &str) -> String {
 }
 
 #[cfg(not(target_arch = "wasm32"))]
-pub fn open_scene_dialog() -> Result<Option<OpenedFile>, String> {
+pub fn open_scene_dialog() -> Result<Picked<OpenedFile>, String> {
+    let start = web_time::Instant::now();
     let Some(path) = rfd::FileDialog::new()
         .set_title("Open scene")
         .add_filter("Scene (JSON)", &["json"])
         .pick_file()
     else {
-        return Ok(None);
+        return Ok(nothing_picked(start));
     };
-    read_text(&path).map(Some)
+    read_text(&path).map(Picked::Chosen)
+}
+
+/// Writes `bytes` to `path` (typed in where no dialog could open); returns
+/// where it went.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn write_file(path: &str, bytes: &[u8]) -> Result<String, String> {
+    std::fs::write(path, bytes).map_err(|e| format!("cannot write {path}: {e}"))?;
+    Ok(path.to_owned())
+}
+
+/// Where a typed-in path starts: the default name in the working directory.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn default_path(name: &str) -> String {
+    std::env::current_dir().map_or_else(|_| name.to_owned(), |d| d.join(name).display().to_string())
 }
 
 /// Reads a dropped or picked file as text.
@@ -75,17 +117,18 @@ pub fn save_dialog(
     default_name: &str,
     filter: (&str, &str),
     bytes: &[u8],
-) -> Result<Option<String>, String> {
+) -> Result<Picked<String>, String> {
+    let start = web_time::Instant::now();
     let Some(path) = rfd::FileDialog::new()
         .set_title("Save")
         .set_file_name(default_name)
         .add_filter(filter.0, &[filter.1])
         .save_file()
     else {
-        return Ok(None);
+        return Ok(nothing_picked(start));
     };
     std::fs::write(&path, bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-    Ok(Some(path.display().to_string()))
+    Ok(Picked::Chosen(path.display().to_string()))
 }
 
 #[cfg(target_arch = "wasm32")]
@@ -109,8 +152,32 @@ pub fn share_link(ctx: &egui::Context, fragment: &str) -> String {
     )
 }
 
+/// The browser has no file system to write a typed-in path to (its
+/// downloads always work, so no path is asked for).
 #[cfg(target_arch = "wasm32")]
-pub fn open_scene_dialog() -> Result<Option<OpenedFile>, String> {
+pub fn write_file(path: &str, _bytes: &[u8]) -> Result<String, String> {
+    Err(format!(
+        "cannot write {path}: the browser has no file system"
+    ))
+}
+
+/// The browser has no file system to read a typed-in path from.
+#[cfg(target_arch = "wasm32")]
+pub fn read_text(path: &std::path::Path) -> Result<OpenedFile, String> {
+    Err(format!(
+        "cannot read {}: the browser has no file system",
+        path.display()
+    ))
+}
+
+/// Where a typed-in path starts: the default name.
+#[cfg(target_arch = "wasm32")]
+pub fn default_path(name: &str) -> String {
+    name.to_owned()
+}
+
+#[cfg(target_arch = "wasm32")]
+pub fn open_scene_dialog() -> Result<Picked<OpenedFile>, String> {
     wasm_bindgen_futures::spawn_local(async {
         let picked = rfd::AsyncFileDialog::new()
             .set_title("Open scene")
@@ -125,7 +192,7 @@ pub fn open_scene_dialog() -> Result<Option<OpenedFile>, String> {
             }));
         }
     });
-    Ok(None)
+    Ok(Picked::Cancelled)
 }
 
 /// Dropped files can only be read asynchronously in the browser: the web
@@ -146,10 +213,10 @@ pub fn save_dialog(
     default_name: &str,
     filter: (&str, &str),
     bytes: &[u8],
-) -> Result<Option<String>, String> {
+) -> Result<Picked<String>, String> {
     web::download(default_name, mime_type(filter.1), bytes)
         .map_err(|e| format!("cannot download {default_name}: {e}"))?;
-    Ok(Some(format!("{default_name} (downloaded)")))
+    Ok(Picked::Chosen(format!("{default_name} (downloaded)")))
 }
 
 /// The MIME type for a file extension the app exports.

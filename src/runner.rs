@@ -300,8 +300,11 @@ impl Runner {
 
     /// Solves now, in slices across frames: the direct solver one contact
     /// iteration (one factorisation) at a time at most, the iterative ones
-    /// animated.
-    pub fn solve(&mut self) {
+    /// animated. The solve starts from the state `cdca solve` starts from
+    /// on the same scene ([`fresh_start`](Self::fresh_start)), so that its
+    /// contact states and K do not depend on what ran before.
+    pub fn solve(&mut self) -> Result<(), String> {
+        self.fresh_start()?;
         // the direct solve too runs as a relaxation, one contact iteration
         // (one factorisation) per slice at most, so that no frame holds a
         // whole solve (in a browser 0.2 s at 60 × 60)
@@ -310,6 +313,44 @@ impl Runner {
         }
         self.relaxation_started = false;
         self.relax();
+        Ok(())
+    }
+
+    /// Rebuilds the simulation from its scene unless it is untouched since
+    /// its build: u = 0 and the contact states of the scene file (every
+    /// face open, or `growth.resume`'s), as `cdca solve` starts. A solve
+    /// warm-started from a solved state carries that state's slip into its
+    /// own: on the default scene after the race, Solve used to end with
+    /// 12 stick and 17 slip points instead of 29 slip, and then not
+    /// converge. The discretisation is kept (`Simulation::with_scene`)
+    /// unless growth changed the cracks; after growth the grown scene (as
+    /// File ▸ Save writes it) is solved, with the panel's solver settings.
+    fn fresh_start(&mut self) -> Result<(), String> {
+        let Some(sim) = self.sim.as_ref() else {
+            return Ok(());
+        };
+        let touched = sim.is_solved()
+            || sim.is_relaxing()
+            || self.relaxation_started
+            || self.growth_ready
+            || !sim.history().is_empty();
+        if !touched {
+            return Ok(());
+        }
+        let edited = self.checked()?.clone();
+        let scene = if sim.history().is_empty() {
+            edited
+        } else {
+            sim.scene()
+                .edit(|s| s.solver = edited.solver.clone())
+                .map_err(|e| e.to_string())?
+        };
+        let old = self.sim.take();
+        self.build(old, scene)?;
+        self.growth_ready = false;
+        self.relaxation_started = false;
+        self.refresh(false, None);
+        Ok(())
     }
 
     /// One sweep of the current relaxation (starting one if needed).
@@ -388,20 +429,6 @@ impl Runner {
         self.direct_solve = None;
     }
 
-    /// Stops the run in progress unless it is a direct solve, which ends
-    /// within a few frames and is what the scene shows (the race and a
-    /// study start after it).
-    pub fn pause_unless_solving(&mut self) {
-        if !self.is_direct_solving() {
-            self.pause();
-        }
-    }
-
-    /// A direct solve is in progress ([`solve`](Self::solve)).
-    pub fn is_direct_solving(&self) -> bool {
-        self.run.is_some() && self.direct_solve.is_some()
-    }
-
     /// Sweeps per frame while relaxing or growing (None: as many as the
     /// frame budget allows).
     pub fn set_pace(&mut self, pace: Option<usize>) {
@@ -443,22 +470,35 @@ impl Runner {
         self.show_now
     }
 
-    /// The field task: samples the field `key` of the current state until
-    /// `deadline`. Finished when there is nothing (more) to sample; the
-    /// solver waits until then, so that what is shown is consistent.
-    pub fn sample_field(&mut self, key: Option<FieldKey>, deadline: Instant) -> Progress {
-        match (&self.sim, key) {
-            (Some(sim), Some(key)) if self.view.has_field() => {
-                self.field.advance(sim, key, deadline)
-            }
-            _ => Progress::Finished,
-        }
-    }
-
     fn refresh(&mut self, solved: bool, relax: Option<cdca::RelaxStatus>) {
         if let Some(sim) = &self.sim {
             self.view.refresh(sim, solved, relax);
         }
+    }
+}
+
+/// The field task: samples the field `key` of the runner's current state.
+/// Finished when there is nothing (more) to sample; the job waits until
+/// then, so that what is shown is consistent.
+pub struct FieldTask<'a> {
+    runner: &'a mut Runner,
+    key: Option<FieldKey>,
+}
+
+impl<'a> FieldTask<'a> {
+    /// The sampling of `key` (None: nothing wanted) on `runner`'s state.
+    pub fn new(runner: &'a mut Runner, key: Option<FieldKey>) -> Self {
+        Self { runner, key }
+    }
+}
+
+impl Task for FieldTask<'_> {
+    fn advance(&mut self, deadline: Instant) -> Result<Progress, String> {
+        let r = &mut *self.runner;
+        Ok(match (&r.sim, self.key) {
+            (Some(sim), Some(key)) if r.view.has_field() => r.field.advance(sim, key, deadline),
+            _ => Progress::Finished,
+        })
     }
 }
 
@@ -498,10 +538,15 @@ impl Task for Runner {
                 }
                 Ok(slice.progress)
             }
-            Err(SolveError::NotPositiveDefinite { .. }) if final_solve => {
+            Err(SolveError::NotPositiveDefinite { .. })
+                if final_solve || sim.free_piece().is_some() =>
+            {
+                let piece = sim.free_piece();
                 self.refresh(false, None);
                 self.view.mark_split();
+                self.view.free_piece = piece;
                 self.run = None;
+                self.direct_solve = None;
                 Ok(Progress::Finished)
             }
             Err(e) => {

@@ -74,6 +74,18 @@ pub const BUNDLED: &[Bundled] = &[
         "45-degree crack, biaxial compression, k = 0.3, mu = 0.5",
         "plate_45_biaxial_k0.3_mu0.5.json"
     ),
+    bundled!(
+        "two flaws, coplanar, uniaxial compression",
+        "specimen_two_flaws_coplanar.json"
+    ),
+    bundled!(
+        "two flaws, overlapping, uniaxial compression",
+        "specimen_two_flaws_overlapping.json"
+    ),
+    bundled!(
+        "two flaws, stepped, uniaxial compression",
+        "specimen_two_flaws_stepped.json"
+    ),
 ];
 
 /// The default scene (a single closed flaw in the 30 mm specimen under
@@ -162,6 +174,38 @@ mod tests {
                 Some(b.title)
             );
         }
+    }
+
+    /// File ▸ Bundled scenes lists every scene file shipped in
+    /// `assets/scenes` (the three two-flaw specimens used to be missing).
+    #[test]
+    fn every_scene_file_is_bundled() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/scenes");
+        let mut files: Vec<String> = std::fs::read_dir(dir)
+            .expect("assets/scenes")
+            .filter_map(Result::ok)
+            .map(|e| e.path())
+            .filter(|p| p.extension().is_some_and(|x| x == "json"))
+            .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+            .collect();
+        files.sort();
+        let mut bundled: Vec<String> = BUNDLED
+            .iter()
+            .map(|b| {
+                files
+                    .iter()
+                    .find(|f| {
+                        std::fs::read_to_string(format!("{dir}/{f}"))
+                            .ok()
+                            .as_deref()
+                            == Some(b.json)
+                    })
+                    .cloned()
+                    .unwrap_or_default()
+            })
+            .collect();
+        bundled.sort();
+        assert_eq!(bundled, files);
     }
 
     #[test]

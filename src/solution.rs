@@ -3,7 +3,7 @@
 //! copy, so panels and the canvas never call into the solver; the runner
 //! refreshes it after each piece of solver work.
 
-use cdca::report::{GrowthStepReport, IntactRockReport, Outcome, TipReport};
+use cdca::report::{GrowthStepReport, IntactRockReport, LoadCapReport, Outcome, TipReport};
 use cdca::scene::SolverKind;
 use cdca::{ContactPointView, ContactState, RelaxStatus, ResidualSample, Simulation};
 use egui_plot::PlotPoint;
@@ -37,6 +37,9 @@ pub struct SolutionView {
     pub history: Vec<GrowthStepReport>,
     pub load_factor: f64,
     pub outcome: Option<Outcome>,
+    /// The growth run ended at `growth.max_load_factor` (critical control):
+    /// no free tip meets its criterion below it.
+    pub load_cap: Option<LoadCapReport>,
     /// Status of the current relaxation, if one ran.
     pub relax: Option<RelaxStatus>,
     /// The linear solver behind `relax` and the residual samples (during
@@ -49,6 +52,9 @@ pub struct SolutionView {
     /// stiffness against a piece's rigid motion), and the field shown is
     /// the last solved state, at the last step's load factor.
     pub split: bool,
+    /// The piece the cracks cut off with nothing holding it, when the
+    /// last solve found one (then `split`).
+    pub free_piece: Option<cdca::report::FreePieceReport>,
     /// The rock away from the cracks against its strength, when solved.
     pub intact_rock: Option<IntactRockReport>,
     /// Which convergence test failed, in the solver's words
@@ -70,6 +76,7 @@ impl SolutionView {
         self.version += 1;
         self.solved = solved;
         self.split = false;
+        self.free_piece = None;
         self.live = !solved && sim.is_relaxing();
         self.relax = relax;
         self.failure = relax
@@ -80,6 +87,7 @@ impl SolutionView {
         self.cracks = sim.cracks();
         self.load_factor = sim.load_factor();
         self.outcome = sim.growth_finished();
+        self.load_cap = sim.load_cap();
         let history = sim.history();
         if history.len() != self.history.len() {
             self.history = history.to_vec();
@@ -102,6 +110,12 @@ impl SolutionView {
             self.contact = sim.contact_points();
         } else {
             self.contact.clear();
+        }
+        // a solve with a piece held by nothing is no solution: shown split
+        if solved && let Some(piece) = sim.free_piece() {
+            self.free_piece = Some(piece);
+            self.mark_split();
+            return;
         }
         if solved {
             self.closed_at_last_solve = (!self.contact.is_empty()).then(|| {

@@ -298,6 +298,21 @@ impl Task for Study {
     }
 }
 
+/// A scene path as the UI shows it: scene files count cracks from 0
+/// (`cracks.0.friction`), the panels from 1 ("Crack 1"), so a crack's path
+/// says which panel crack it is: `cracks.0.friction (crack 1)`. Paths are
+/// typed and saved as the scene file has them.
+pub fn path_label(path: &str) -> String {
+    let mut parts = path.split('.');
+    match (
+        parts.next(),
+        parts.next().and_then(|i| i.parse::<usize>().ok()),
+    ) {
+        (Some("cracks"), Some(i)) => format!("{path} (crack {})", i + 1),
+        _ => path.to_owned(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -315,6 +330,20 @@ mod tests {
         assert!(
             (v[0] + 2e6).abs() < 1e-6 && (v[1] + 4e6).abs() < 1e-6 && (v[2] + 6e6).abs() < 1e-6
         );
+    }
+
+    /// The Study tab names a crack's path with the panel's 1-based number.
+    #[test]
+    fn crack_paths_say_the_panels_crack_number() {
+        assert_eq!(
+            path_label("cracks.0.friction"),
+            "cracks.0.friction (crack 1)"
+        );
+        assert_eq!(
+            path_label("cracks.2.cohesion"),
+            "cracks.2.cohesion (crack 3)"
+        );
+        assert_eq!(path_label("boundary.top.normal"), "boundary.top.normal");
     }
 
     #[test]

@@ -10,6 +10,7 @@ use cdca::scene::SolverKind;
 use crate::canvas::ViewSettings;
 use crate::compare::Race;
 use crate::edit::Editor;
+use crate::job::Job;
 use crate::plot_tab::PlotTab;
 use crate::run::RunMode;
 use crate::solution::SolutionView;
@@ -41,6 +42,12 @@ pub struct RunStatus {
     pub accelerate_growth: bool,
     /// The solver growth uses on the current simulation.
     pub growth_solver: SolverKind,
+    /// The job holding the slot, if one runs.
+    pub job: Option<Job>,
+    /// A drag of the scene (a crack end, a slider) is under way.
+    pub dragging: bool,
+    /// An edit is re-solved by itself when it ends (the solve is quick).
+    pub solves_on_release: bool,
 }
 
 /// What the panels read.

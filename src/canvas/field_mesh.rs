@@ -64,7 +64,7 @@ impl FieldMesh {
             }
             corners.push(quad);
             colors.push(match range {
-                Some((lo, hi)) => turbo(((v - lo) / (hi - lo)) as f32),
+                Some((lo, hi)) => range_colour(((v - lo) / (hi - lo)) as f32),
                 None => PLAIN,
             });
         }
@@ -90,6 +90,25 @@ impl FieldMesh {
             mesh.add_triangle(base, base + 2, base + 3);
         }
         painter.add(egui::Shape::mesh(mesh));
+    }
+}
+
+/// Colour of a value below the colour range (the 1–99 % range leaves the
+/// extremes out): grey, unlike any colour of the map (the map's own end,
+/// near-black, read as part of it).
+pub const BELOW_RANGE: Color32 = Color32::from_rgb(150, 150, 150);
+/// Colour of a value above the colour range: pink.
+pub const ABOVE_RANGE: Color32 = Color32::from_rgb(255, 150, 220);
+
+/// The colour of `t` = (v − lo)/(hi − lo): the map inside [0, 1], the
+/// out-of-range colours outside it.
+pub fn range_colour(t: f32) -> Color32 {
+    if t < -1e-6 {
+        BELOW_RANGE
+    } else if t > 1.0 + 1e-6 {
+        ABOVE_RANGE
+    } else {
+        turbo(t)
     }
 }
 
@@ -146,7 +165,10 @@ pub fn paint_legend(
     let text_color = painter.ctx().global_style().visuals.text_color();
     let bg = Rect::from_min_max(
         bar.min - vec2(8.0, 30.0),
-        pos2(canvas.right() - 4.0, bar.bottom() + 26.0),
+        pos2(
+            canvas.right() - 4.0,
+            bar.bottom() + if clipped { 38.0 } else { 26.0 },
+        ),
     );
     painter.rect_filled(
         bg,
@@ -203,15 +225,39 @@ pub fn paint_legend(
             bar.left_bottom() + vec2(0.0, 6.0),
             Align2::LEFT_TOP,
             "1–99 % range",
-            font,
+            font.clone(),
             text_color,
         );
+        // the out-of-range colours, in a row under the range's note
+        for (colour, dx, text) in [(ABOVE_RANGE, 0.0, "above"), (BELOW_RANGE, 42.0, "below")] {
+            let swatch = Rect::from_min_size(bar.left_bottom() + vec2(dx, 24.0), vec2(8.0, 8.0));
+            painter.rect_filled(swatch, 0.0, colour);
+            painter.text(
+                swatch.right_center() + vec2(4.0, 0.0),
+                Align2::LEFT_CENTER,
+                text,
+                font.clone(),
+                text_color,
+            );
+        }
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Values beyond the colour range are marked by colours of their own,
+    /// not the map's dark ends.
+    #[test]
+    fn out_of_range_values_have_their_own_colours() {
+        assert_eq!(range_colour(-0.2), BELOW_RANGE);
+        assert_eq!(range_colour(1.2), ABOVE_RANGE);
+        assert_eq!(range_colour(0.0), turbo(0.0));
+        assert_eq!(range_colour(1.0), turbo(1.0));
+        assert_ne!(BELOW_RANGE, turbo(0.0));
+        assert_ne!(ABOVE_RANGE, turbo(1.0));
+    }
 
     #[test]
     fn turbo_runs_from_blue_to_red() {

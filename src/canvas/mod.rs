@@ -259,13 +259,8 @@ impl Canvas {
         } else if (response.double_clicked() || enter)
             && let Some(crack) = editor.finish_drawing()
         {
-            let mut s = scene.clone();
-            s.cracks.push(crack);
-            editor.selected_crack = Some(s.cracks.len() - 1);
-            cmds.push(Command::SetScene {
-                scene: Box::new(s),
-                ongoing: false,
-            });
+            editor.selected_crack = Some(scene.cracks.len());
+            cmds.push(Command::AddCrack(Box::new(crack)));
         }
     }
 
@@ -336,6 +331,9 @@ impl Canvas {
             );
         }
         symbols::paint_tips(painter, &view, &input.solution.tips, input.selected_tip);
+        if !input.solution.tips.is_empty() {
+            symbols::paint_tip_key(painter, view.rect);
+        }
         if editor.tool == Tool::Select {
             symbols::paint_handles(painter, &view, scene, hovered_vertex);
         }

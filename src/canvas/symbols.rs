@@ -297,6 +297,35 @@ pub fn paint_tips(
     }
 }
 
+/// The key to the tip markers, at the canvas's bottom right (the pointer's
+/// position is at the bottom left): each marker's colour is the decision
+/// at that tip, the ring the inspected tip.
+pub fn paint_tip_key(painter: &Painter, canvas: egui::Rect) {
+    let rows = [
+        (Some(tip_color(Mode::Tension)), "tip grows in tension"),
+        (Some(tip_color(Mode::Shear)), "tip grows in shear"),
+        (Some(tip_color(Mode::None)), "tip does not grow"),
+        (None, "inspected tip"),
+    ];
+    let font = FontId::proportional(11.0);
+    let mut y = canvas.bottom() - 10.0 - 16.0 * (rows.len() - 1) as f32;
+    for (colour, text) in rows {
+        let q = Pos2::new(canvas.right() - 14.0, y);
+        match colour {
+            Some(c) => painter.circle(q, 5.0, c, Stroke::new(1.5, Color32::BLACK)),
+            None => painter.circle_stroke(q, 7.0, Stroke::new(2.0, HANDLE_COLOR)),
+        };
+        painter.text(
+            q - vec2(12.0, 0.0),
+            Align2::RIGHT_CENTER,
+            text,
+            font.clone(),
+            Color32::from_gray(220),
+        );
+        y += 16.0;
+    }
+}
+
 /// Editable vertices of the scene's cracks.
 pub fn paint_handles(
     painter: &Painter,

@@ -7,6 +7,8 @@ use crate::command::{Command, Export};
 use crate::edit::Tool;
 use crate::field::FieldKind;
 use crate::frame_stats::FrameStats;
+use crate::job::Waiting;
+use crate::path_prompt::PathPrompt;
 use crate::scenes::BUNDLED;
 use crate::units;
 use crate::view::{AppView, Message, ViewState};
@@ -203,6 +205,59 @@ pub fn message_ui(ui: &mut Ui, message: Option<&Message>, cmds: &mut Vec<Command
                 ui.colored_label(color, text);
                 if ui.button("Dismiss").clicked() {
                     cmds.push(Command::DismissMessage);
+                }
+            });
+        });
+}
+
+/// The job asked for while another runs: what runs, and the choice to
+/// cancel it and start the new one, or keep it.
+pub fn waiting_ui(ui: &mut Ui, waiting: Option<&Waiting>, cmds: &mut Vec<Command>) {
+    let Some(w) = waiting else {
+        return;
+    };
+    let color = ui.visuals().warn_fg_color;
+    egui::Frame::group(ui.style())
+        .stroke(egui::Stroke::new(1.5, color))
+        .show(ui, |ui| {
+            ui.horizontal_wrapped(|ui| {
+                ui.colored_label(color, w.text());
+                if ui.button(w.confirm_label()).clicked() {
+                    cmds.push(Command::StartWaiting);
+                }
+                if ui.button(w.drop_label()).clicked() {
+                    cmds.push(Command::DropWaiting);
+                }
+            });
+        });
+}
+
+/// The path field where no file dialog could open: what it is for, the
+/// path, and the buttons that use it or close it.
+pub fn path_prompt_ui(ui: &mut Ui, prompt: Option<&mut PathPrompt>, cmds: &mut Vec<Command>) {
+    let Some(prompt) = prompt else {
+        return;
+    };
+    let color = ui.visuals().warn_fg_color;
+    egui::Frame::group(ui.style())
+        .stroke(egui::Stroke::new(1.5, color))
+        .show(ui, |ui| {
+            ui.colored_label(color, prompt.text());
+            ui.horizontal(|ui| {
+                let label = ui.label("Path");
+                let field = ui
+                    .add(
+                        egui::TextEdit::singleline(&mut prompt.path)
+                            .desired_width(420.0)
+                            .hint_text("path/to/file"),
+                    )
+                    .labelled_by(label.id);
+                let entered = field.lost_focus() && ui.input(|i| i.key_pressed(Key::Enter));
+                if ui.button(prompt.button()).clicked() || entered {
+                    cmds.push(Command::UseTypedPath);
+                }
+                if ui.button("Cancel").clicked() {
+                    cmds.push(Command::CancelTypedPath);
                 }
             });
         });

@@ -8,7 +8,9 @@
 //! saying how to fill it.
 
 use egui::{Color32, Pos2, ProgressBar, RichText, Sense, Stroke, Ui, Vec2};
-use egui_plot::{GridInput, Line, LineStyle, Plot, PlotPoint, PlotPoints, Points, Text, VLine};
+use egui_plot::{
+    AxisHints, GridInput, Line, LineStyle, Plot, PlotPoint, PlotPoints, Points, Text, VLine,
+};
 
 use crate::command::{Command, Export, PlotFormat};
 use crate::compare::Race;
@@ -103,7 +105,7 @@ fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut V
     ui.horizontal_wrapped(|ui| {
         for s in fig.legend() {
             swatch(ui, s.colour, Some(s.style));
-            ui.label(&s.name);
+            ui.label(fig.legend_name(s));
         }
         for (name, _, colour) in &fig.vlines {
             swatch(ui, *colour, None);
@@ -122,11 +124,26 @@ fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut V
             }
         }
     });
-    let height = ui.available_height().max(MIN_PLOT_HEIGHT);
+    // the notes' lines below the plot keep their room
+    let notes = fig.notes.len() as f32 * (ui.text_style_height(&egui::TextStyle::Small) + 4.0);
+    let height = (ui.available_height() - notes).max(MIN_PLOT_HEIGHT);
     let kind = fig.y_ticks;
     let x_min_step = if fig.x_whole { 1.0 } else { 0.0 };
+    // the x axis's tick labels at the spacing the grid spacer gives them:
+    // egui_plot's default hides x labels closer than 60 px, which left the
+    // Study plots (about 200 px wide) without a single number on x
+    let x_axis = AxisHints::new_x()
+        .label(fig.x_label.as_str())
+        .label_spacing(0.75 * LABEL_SPACING as f32..=LABEL_SPACING as f32)
+        .formatter(move |m, _| {
+            if m.step_size < x_min_step {
+                String::new()
+            } else {
+                tick_label(YTicks::Decimal, m.value, m.step_size)
+            }
+        });
     let mut plot = Plot::new(&fig.id)
-        .x_axis_label(&fig.x_label)
+        .custom_x_axes(vec![x_axis])
         .y_axis_label(&fig.y_label)
         .y_axis_min_width(Y_AXIS_WIDTH)
         .height(height)
@@ -135,13 +152,6 @@ fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut V
         .grid_spacing(GRID_MIN..=300.0)
         .x_grid_spacer(spacer(YTicks::Decimal, x_min_step))
         .y_grid_spacer(spacer(kind, 0.0))
-        .x_axis_formatter(move |m, _| {
-            if m.step_size < x_min_step {
-                String::new()
-            } else {
-                tick_label(YTicks::Decimal, m.value, m.step_size)
-            }
-        })
         .y_axis_formatter(move |m, _| tick_label(kind, m.value, m.step_size));
     for y in &fig.include_y {
         plot = plot.include_y(*y);
@@ -184,17 +194,22 @@ fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut V
         for (name, x, colour) in &fig.vlines {
             plot.vline(VLine::new(name, *x).color(*colour));
         }
-        for n in &fig.notes {
+        // numbered marks on the plot, their words below it: notes at
+        // nearby points used to run into each other
+        for (i, n) in fig.notes.iter().enumerate() {
             plot.text(
                 Text::new(
                     "note",
                     PlotPoint::new(n.at[0], n.at[1]),
-                    RichText::new(format!("◀ {}", n.text)).small(),
+                    RichText::new(format!("◀ {}", i + 1)).small().strong(),
                 )
                 .anchor(egui::Align2::LEFT_CENTER),
             );
         }
     });
+    for (i, n) in fig.notes.iter().enumerate() {
+        ui.small(format!("{}: {}", i + 1, n.text));
+    }
 }
 
 /// A legend entry's sample of the series: its line, dashes or marker (a
@@ -245,11 +260,11 @@ fn study_ui(
     ui.horizontal_wrapped(|ui| {
         let label = ui.label("Parameter");
         egui::ComboBox::from_id_salt("study path")
-            .selected_text(setup.path.clone())
+            .selected_text(crate::study::path_label(&setup.path))
             .show_ui(ui, |ui| {
                 // only the fields this scene has (no traction on a free side)
                 for p in scene.params(&SUGGESTED_PATHS) {
-                    ui.selectable_value(&mut setup.path, p.to_owned(), p);
+                    ui.selectable_value(&mut setup.path, p.to_owned(), crate::study::path_label(p));
                 }
             })
             .response

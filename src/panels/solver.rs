@@ -9,6 +9,7 @@ use egui::{Button, Grid, ProgressBar, Ui};
 use super::widgets::{EditTracker, choice, count_row, quantity_row};
 use crate::command::Command;
 use crate::compare::solver_name;
+use crate::job::{Job, capitalised};
 use crate::run::RunMode;
 use crate::units;
 use crate::view::AppView;
@@ -156,57 +157,87 @@ fn omega_optimum_row(ui: &mut Ui, omega: &mut f64, n: usize) {
     ui.end_row();
 }
 
+/// A button that starts a job: disabled with `why_not` on hover when it
+/// cannot act; while another job holds the slot, its hover says that a
+/// press offers to cancel that job.
+fn job_button(
+    ui: &mut Ui,
+    v: &AppView,
+    (label, hint): (&str, &str),
+    why_not: Option<&str>,
+    cmd: Command,
+    cmds: &mut Vec<Command>,
+) {
+    let running = v.run.job.filter(|&j| Some(j) != Job::of_command(&cmd));
+    let hint = match running {
+        Some(j) => format!(
+            "{hint}. {} is running: pressing this offers to cancel it.",
+            capitalised(j.name())
+        ),
+        None => hint.to_owned(),
+    };
+    let r = ui
+        .add_enabled(why_not.is_none(), Button::new(label))
+        .on_hover_text(hint)
+        .on_disabled_hover_text(why_not.unwrap_or_default());
+    if r.clicked() {
+        cmds.push(cmd);
+    }
+}
+
 fn controls_ui(ui: &mut Ui, v: &AppView, race_time_cap: &mut f64, cmds: &mut Vec<Command>) {
     let mode = v.run.mode;
     let paused = mode == RunMode::Paused;
     let iterative = v.scene.solver.kind != SolverKind::Direct;
+    let finished = v.solution.outcome.is_some();
+    let ended = "Growth has ended (see Outcome); Reset goes back to the scene's cracks.";
     ui.horizontal_wrapped(|ui| {
-        let buttons: [(&str, &str, Command, bool); 4] = [
-            (
-                "Solve",
-                "Full solve with contact at the current load",
-                Command::Solve,
-                paused,
-            ),
-            (
-                "Step",
-                "One sweep of the iterative solver (the direct solver solves at once)",
-                Command::Step,
-                paused,
-            ),
-            (
-                "Relax",
-                "Sweep until converged, animated",
-                Command::Relax,
-                paused && iterative,
-            ),
-            (
-                "Grow one step",
-                "Solve, evaluate the tips, grow those that meet the criterion",
-                Command::GrowOne,
-                paused,
-            ),
-        ];
-        for (label, hint, cmd, enabled) in buttons {
-            if ui
-                .add_enabled(enabled, egui::Button::new(label))
-                .on_hover_text(hint)
-                .clicked()
-            {
-                cmds.push(cmd);
-            }
-        }
+        job_button(
+            ui,
+            v,
+            ("Solve", "Full solve with contact at the current load, from the scene's initial state as `cdca solve` solves it"),
+            None,
+            Command::Solve,
+            cmds,
+        );
+        job_button(
+            ui,
+            v,
+            ("Step", "One sweep of the iterative solver (the direct solver solves at once)"),
+            None,
+            Command::Step,
+            cmds,
+        );
+        job_button(
+            ui,
+            v,
+            ("Relax", "Sweep until converged, animated"),
+            (!iterative).then_some("The direct solver solves at once: press Solve (Relax animates the iterative solvers)."),
+            Command::Relax,
+            cmds,
+        );
+        job_button(
+            ui,
+            v,
+            ("Grow one step", "Solve, evaluate the tips, grow those that meet the criterion"),
+            finished.then_some(ended),
+            Command::GrowOne,
+            cmds,
+        );
     });
     ui.horizontal_wrapped(|ui| {
-        let finished = v.solution.outcome.is_some();
-        if ui
-            .add_enabled(paused && !finished, egui::Button::new("Run growth"))
-            .clicked()
-        {
-            cmds.push(Command::RunGrowth);
-        }
+        job_button(
+            ui,
+            v,
+            ("Run growth", "Grow until the run ends, animated"),
+            finished.then_some(ended),
+            Command::RunGrowth,
+            cmds,
+        );
         if ui
             .add_enabled(!paused, egui::Button::new("Pause"))
+            .on_hover_text("Stop the solve or growth run where it is")
+            .on_disabled_hover_text("Nothing to pause: no solve or growth run is going on.")
             .clicked()
         {
             cmds.push(Command::Pause);
@@ -221,17 +252,16 @@ fn controls_ui(ui: &mut Ui, v: &AppView, race_time_cap: &mut f64, cmds: &mut Vec
     });
     pace_ui(ui, v, cmds);
     ui.horizontal(|ui| {
-        if ui
-            .button("Compare solvers")
-            .on_hover_text(
-                "Race every solver from u = 0 on this scene: error against the direct solution over run time",
-            )
-            .clicked()
-        {
-            cmds.push(Command::CompareSolvers {
+        job_button(
+            ui,
+            v,
+            ("Compare solvers", "Race every solver from u = 0 on this scene: error against the direct solution over run time"),
+            None,
+            Command::CompareSolvers {
                 time_cap: *race_time_cap,
-            });
-        }
+            },
+            cmds,
+        );
         let l = ui.label("cap");
         ui.add(
             egui::DragValue::new(race_time_cap)
@@ -299,7 +329,7 @@ fn race_progress_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
     ui.add(ProgressBar::new(progress).text(format!(
         "Race: {} ({})",
         run.racer.name,
-        units::seconds(run.seconds())
+        units::seconds(run.wall_seconds())
     )));
     ui.horizontal_wrapped(|ui| {
         ui.label(format!(
@@ -316,7 +346,11 @@ fn race_progress_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
 
 fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
     let view = &v.solution;
-    if v.run.stale && !view.solved {
+    if v.run.dragging && v.run.solves_on_release {
+        ui.label("Dragging — the scene re-solves on release.");
+    } else if v.run.dragging {
+        ui.label("Dragging — press Solve after release.");
+    } else if v.run.stale && !view.solved {
         ui.colored_label(ui.visuals().warn_fg_color, "Scene changed — press Solve.");
     }
     match v.run.mode {
@@ -368,7 +402,34 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         ui.add(ProgressBar::new(p).text("sampling the field"));
     }
     race_progress_ui(ui, v, cmds);
-    if view.split {
+    if let Some(cap) = &view.load_cap {
+        ui.colored_label(
+            ui.visuals().warn_fg_color,
+            format!(
+                "Growth stopped at the load cap: no free tip meets its criterion at any \
+                 λ below {} (growth.max_load_factor).",
+                cap.max_load_factor
+            ),
+        );
+    }
+    if let Some(piece) = view.free_piece.as_ref().filter(|_| view.split) {
+        // after growth the canvas keeps the last step's solved field
+        let kept = if view.history.is_empty() {
+            String::new()
+        } else {
+            format!(
+                " The field shown is the last solved state, at λ = {:.3}.",
+                view.load_factor
+            )
+        };
+        ui.colored_label(
+            ui.visuals().warn_fg_color,
+            format!(
+                "Specimen split: {}. This solve is no solution.{kept}",
+                piece.describe()
+            ),
+        );
+    } else if view.split {
         ui.colored_label(
             ui.visuals().warn_fg_color,
             format!(
@@ -420,7 +481,12 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         ui.label(view.history.len().to_string());
         ui.end_row();
         ui.label("Load factor λ");
-        ui.label(format!("{:.3}", view.load_factor));
+        // no load is applied to an unsolved, edited scene: no 0.000
+        if view.solved || view.live || !view.history.is_empty() {
+            ui.label(format!("{:.3}", view.load_factor));
+        } else {
+            ui.label("–");
+        }
         ui.end_row();
         if let Some(r) = view.intact_rock {
             intact_rock_row(ui, &r);
@@ -458,6 +524,9 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
             ui.end_row();
         }
     });
+    if let Some(r) = view.intact_rock {
+        ui.label(intact_rock_words(&r, view.load_factor));
+    }
     stepped_around_ui(ui, &view.history);
 }
 
@@ -559,11 +628,7 @@ fn intact_rock_row(ui: &mut Ui, r: &cdca::report::IntactRockReport) {
         r.ucs / units::PA_PER_MPA
     );
     ui.label("Intact rock").on_hover_text(&why);
-    let text = format!(
-        "{:.2} × strength, {:.0}% failed",
-        r.utilisation,
-        100.0 * r.failed_fraction
-    );
+    let text = format!("median {:.2} × strength", r.utilisation);
     if r.utilisation >= 1.0 {
         ui.colored_label(ui.visuals().warn_fg_color, text)
     } else {
@@ -571,6 +636,27 @@ fn intact_rock_row(ui: &mut Ui, r: &cdca::report::IntactRockReport) {
     }
     .on_hover_text(why);
     ui.end_row();
+}
+
+/// The intact rock's number in words, under the status: how much of the
+/// uncracked area is past its strength at this load, and the load at
+/// which the median reaches it (u is linear in the load). "0.98 ×
+/// strength, 47% failed" used to read as a contradiction, and "1.26 ×
+/// strength" as a specimen failed before any crack grew.
+fn intact_rock_words(r: &cdca::report::IntactRockReport, load_factor: f64) -> String {
+    let past = format!(
+        "{:.0}% of the uncracked rock is past its strength at λ = {load_factor:.2}",
+        100.0 * r.failed_fraction
+    );
+    if r.utilisation > 0.0 {
+        format!(
+            "Intact rock: {past}; its median reaches the strength at λ = {:.2}. The crack-tip \
+             criterion does not check it.",
+            load_factor / r.utilisation
+        )
+    } else {
+        format!("Intact rock: {past}.")
+    }
 }
 
 /// `n` iterations of a solve by `kind`, in that solver's own unit: the

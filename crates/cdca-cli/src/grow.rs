@@ -27,6 +27,9 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         write_csv(dir, &report)?;
     }
     output::print_json(&report)?;
+    if let Some(cap) = &report.load_cap {
+        eprintln!("cdca: note: growth {} (`load_cap`)", cap.reason);
+    }
     if let Some(s) = report
         .steps
         .iter()
@@ -99,6 +102,7 @@ fn grow(
         outcome,
         cracks: sim.cracks(),
         error: failed.as_ref().map(|e| format!("step {next}: {e}")),
+        load_cap: sim.load_cap(),
     };
     (report, failed)
 }

@@ -17,6 +17,43 @@ pub struct SolveReport {
     /// for a rock without cohesion, see `RockStrength::of_material`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub intact_rock: Option<IntactRockReport>,
+    /// A piece of the specimen that nothing holds (cut off by cracks whose
+    /// faces are open, with no support): the solve is then no solution,
+    /// and not `converged`, whatever the linear solver reported.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub free_piece: Option<FreePieceReport>,
+}
+
+/// A piece of the specimen cut off by cracks and held by nothing: no
+/// supported side, no point support, no crack face in contact with the
+/// rest ([`Simulation::free_piece`](crate::Simulation::free_piece)).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct FreePieceReport {
+    /// Elements in the piece.
+    pub elements: usize,
+    /// Centre of the piece's elements, m.
+    pub centroid: [f64; 2],
+    /// The cracks (indices into the scene's `cracks`) that cut it off.
+    pub cracks: Vec<usize>,
+}
+
+impl FreePieceReport {
+    /// The piece in words.
+    pub fn describe(&self) -> String {
+        let cracks: Vec<String> = self.cracks.iter().map(|c| format!("cracks[{c}]")).collect();
+        format!(
+            "{} cut off a piece of {} elements around ({:.4}, {:.4}) m that no support or \
+             crack face in contact holds",
+            if cracks.is_empty() {
+                "the cracks".to_owned()
+            } else {
+                cracks.join(" and ")
+            },
+            self.elements,
+            self.centroid[0],
+            self.centroid[1]
+        )
+    }
 }
 
 /// The rock away from the cracks (elements with no enriched node) against
@@ -163,6 +200,33 @@ pub struct GrowReport {
     /// With outcome `error`: the step that failed and why.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
+    /// Under critical control, a run that ended `completed` because no
+    /// free tip meets its criterion at any λ up to `growth.max_load_factor`:
+    /// that cap, and the sentence saying so.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub load_cap: Option<LoadCapReport>,
+}
+
+/// A growth run stopped by `growth.max_load_factor` (critical control).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct LoadCapReport {
+    /// `growth.max_load_factor`, the highest λ the λ_cr search tries.
+    pub max_load_factor: f64,
+    /// What stopped the run, in words.
+    pub reason: String,
+}
+
+impl LoadCapReport {
+    /// The report of a run stopped at `max_load_factor`.
+    pub fn at(max_load_factor: f64) -> Self {
+        Self {
+            max_load_factor,
+            reason: format!(
+                "stopped at the load cap growth.max_load_factor = {max_load_factor}: no free \
+                 tip meets its criterion at any load factor below it"
+            ),
+        }
+    }
 }
 
 /// How a growth run ended.
@@ -267,7 +331,7 @@ impl SolveReport {
     /// Whether the solve can be trusted: the linear solver and the contact
     /// iteration both converged.
     pub fn converged(&self) -> bool {
-        self.solver.converged && self.contact.converged
+        self.solver.converged && self.contact.converged && self.free_piece.is_none()
     }
 
     /// One line naming the convergence test that failed, if any: the
@@ -275,7 +339,12 @@ impl SolveReport {
     /// that break the contact law once the states settled.
     pub fn failure(&self) -> Option<String> {
         let (s, c) = (&self.solver, &self.contact);
-        if !s.converged && s.kind == "direct" {
+        if let Some(p) = &self.free_piece {
+            Some(format!(
+                "the specimen is split: {}, so it has no equilibrium",
+                p.describe()
+            ))
+        } else if !s.converged && s.kind == "direct" {
             Some(format!(
                 "the direct solve's true relative residual {:.3e} is above {:.0e} after \
                  iterative refinement: the matrix is singular or too ill-conditioned (a \

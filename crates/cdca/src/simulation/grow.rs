@@ -13,7 +13,7 @@ use crate::fracture::growth::{apply, default_increment, extend};
 use crate::geometry::cracks::{Crack, TipKind, classify_tips, split_specimen};
 use crate::geometry::plane::P2;
 use crate::report::{
-    ContactCounts, GrownTip, GrowthStepReport, Mode, Outcome, SolveReport, TipReport,
+    ContactCounts, GrownTip, GrowthStepReport, LoadCapReport, Mode, Outcome, SolveReport, TipReport,
 };
 use crate::scene::{CrackSpec, GrowthControl, Resume, SolverKind};
 
@@ -382,6 +382,14 @@ impl Simulation {
     /// Whether growth has ended (through, unstable, max steps, completed).
     pub fn growth_finished(&self) -> Option<Outcome> {
         self.state.outcome
+    }
+
+    /// Under critical control, a run ended `completed`: the λ_cr search
+    /// reached `growth.max_load_factor` with no free tip meeting its
+    /// criterion, so the cap stopped it.
+    pub fn load_cap(&self) -> Option<LoadCapReport> {
+        (self.critical_control() && self.state.outcome == Some(Outcome::Completed))
+            .then(|| LoadCapReport::at(self.model.scene.growth.max_load_factor))
     }
 
     /// Current crack polylines, m.

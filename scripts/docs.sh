@@ -14,9 +14,7 @@
 #
 # Usage:
 #   bash scripts/docs.sh           the quick tables, then the slow ones
-#                                  (runs scripts/held_out_pairs.sh, 2 min),
-#                                  and the growth benchmarks if
-#                                  scripts/bench_growth_vs.sh wrote rows
+#                                  (runs scripts/held_out_pairs.sh, 2 min)
 #   bash scripts/docs.sh --quick   the quick tables: the rows the last
 #                                  `bash scripts/test.sh` wrote, and the
 #                                  ignored tests (runs the tests if no rows
@@ -38,11 +36,8 @@ esac
 
 target=${CARGO_TARGET_DIR:-target}
 rows=$target/docs
-quick=(verification transitions flaw-range-first-growth ignored-tests fill-ordering)
+quick=(verification transitions flaw-range-first-growth ignored-tests)
 slow=(held-out-pairs)
-# written by scripts/bench_growth_vs.sh (it needs a baseline build): put in
-# when that script has written rows
-benchmarks=(growth-cost growth-scaling)
 
 # The tests that are #[ignore]d, with the reason they give: one row each in
 # $rows/ignored-tests/.
@@ -144,12 +139,5 @@ all)
     generate docs "${quick[@]}"
     bash scripts/held_out_pairs.sh
     generate docs "${slow[@]}"
-    for name in "${benchmarks[@]}"; do
-        if [ -d "$rows/$name" ]; then
-            generate docs "$name"
-        else
-            echo "docs.sh: table '$name' kept (run scripts/bench_growth_vs.sh to measure it)"
-        fi
-    done
     ;;
 esac

@@ -55,7 +55,8 @@ pub struct Runner {
     run: Option<Run>,
     /// The simulation an edit invalidated, kept until the next build: its
     /// discretisation is reused when the edit left it unchanged
-    /// (`Simulation::with_scene`: a load, the faces' friction, the solver).
+    /// (`Simulation::with_scene`: a load, the faces' friction, the solver);
+    /// its solver's factor is freed when it becomes the spare.
     spare: Option<Simulation>,
     /// `start_relaxation` was called on the current simulation.
     relaxation_started: bool,
@@ -245,7 +246,9 @@ impl Runner {
     /// (cheap; `Scene::try_from`); the discretisation is built when solver
     /// work is asked for.
     pub fn invalidate(&mut self, scene: &SceneFile) -> Result<(), String> {
-        if let Some(sim) = self.sim.take() {
+        if let Some(mut sim) = self.sim.take() {
+            // kept for its discretisation only: its factor is freed now
+            sim.release_solver();
             self.spare = Some(sim);
         }
         self.run = None;

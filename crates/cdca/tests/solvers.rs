@@ -17,9 +17,6 @@ use cdca::solvers::linear::LinearSolver;
 use cdca::solvers::relaxation::Relaxation;
 use cdca::{ContactState, SolveError};
 
-#[path = "support/docs_row.rs"]
-mod docs_row;
-
 const ITERATIVE: [SolverKind; 3] = [SolverKind::Automaton, SolverKind::Cg, SolverKind::Multigrid];
 
 /// Closed 45° crack under biaxial compression (the paper's setting):
@@ -320,46 +317,5 @@ fn nearly_incompressible_ends_with_an_explicit_status() {
     let p = problem(&open_scene(20, 0.49, "strain"));
     for kind in ITERATIVE {
         explicit_status("nu = 0.49", &p, kind, stiff_budget());
-    }
-}
-
-/// The direct solver's fill-reducing order (the mesh's nested dissection)
-/// against approximate minimum degree, faer's AMD on the same matrix: a
-/// plate with a closed crack at 45° (tips inside elements) on 60², 100²
-/// and 200² meshes. Nested dissection leaves at least 5% fewer entries in
-/// `L` on each (the factorisation's flops fall by more: 28–41%, see the
-/// Benchmarks docs). Rows of the `fill-ordering` table in
-/// docs/benchmarks.md.
-#[test]
-fn nested_dissection_leaves_less_fill_than_amd() {
-    use faer::sparse::linalg::cholesky::{
-        CholeskySymbolicParams, SymmetricOrdering, factorize_symbolic_cholesky,
-    };
-    for n in [60, 100, 200] {
-        let model = Model::new(closed_scene(n, None));
-        let x = model.discretise(model.initial_cracks());
-        let ordered = x.pattern().expect("pattern").ordered();
-        let amd = factorize_symbolic_cholesky(
-            ordered.lower.as_ref(),
-            faer::Side::Lower,
-            SymmetricOrdering::Amd,
-            CholeskySymbolicParams::default(),
-        )
-        .expect("AMD");
-        let (nd, amd) = (ordered.symbolic.len_val(), amd.len_val());
-        let ratio = nd as f64 / amd as f64;
-        println!("{n}²: L entries nested dissection {nd}, AMD {amd} ({ratio:.3})");
-        docs_row::record_row(
-            "fill-ordering",
-            &format!("{n:04}"),
-            &[
-                &format!("{n} × {n}"),
-                &x.n_free().to_string(),
-                &nd.to_string(),
-                &amd.to_string(),
-                &docs_row::sig(ratio, 3),
-            ],
-        );
-        assert!(ratio < 0.95, "{n}²: {nd} against AMD's {amd}");
     }
 }

@@ -1,5 +1,5 @@
-//! Direct solver: sparse Cholesky (faer, in the mesh's nested-dissection
-//! order) of the assembled matrix. The reference for every other solver.
+//! Direct solver: sparse Cholesky (faer, AMD ordering) of the assembled
+//! matrix. The reference for every other solver.
 
 use std::sync::Arc;
 

@@ -275,13 +275,7 @@ impl Xfem {
             dofs.extend_from_slice(&el.dofs);
             starts.push(dofs.len());
         }
-        let perm = self
-            .mesh
-            .nested_dissection()
-            .into_iter()
-            .flat_map(|node| self.dofs.node_free(node).map(|d| d as usize))
-            .collect();
-        let p = Pattern::new(self.n_free(), &dofs, &starts, perm)?;
+        let p = Pattern::new(self.n_free(), &dofs, &starts)?;
         Ok(self.pattern.get_or_init(|| p))
     }
 

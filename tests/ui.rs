@@ -1448,23 +1448,10 @@ fn a_scene_saved_mid_growth_reopens_and_grows_the_identical_next_step() {
 /// critical steps take it through to the right side, and the upper half,
 /// held by nothing, is free to move away. (Whether the direct solver's
 /// factorisation meets a non-positive pivot on such a mechanism depends
-/// on round-off: on this mesh it does; on 20 × 40 it returns a solution
-/// with residual 2.9 reported as converged, a solver-crate issue.)
-const SPLITTING_SCENE: &str = r#"{
-  "name": "Edge crack cut through",
-  "specimen": { "width": 1.0, "height": 2.0, "thickness": 1.0 },
-  "mesh": { "nx": 21, "ny": 42 },
-  "material": { "young": 2e11, "poisson": 0.3, "plane": "strain" },
-  "cracks": [{ "points": [[0.0, 1.01], [0.7, 1.01]] }],
-  "boundary": {
-    "bottom": { "kind": "roller" },
-    "left": { "kind": "free" },
-    "top": { "kind": "traction", "normal": 1e6, "shear": 0.0 },
-    "right": { "kind": "free" },
-    "points": [{ "at": [0.0, 0.0], "fix": "x" }]
-  },
-  "growth": { "control": "critical", "max_steps": 30, "max_load_factor": 1000.0 }
-}"#;
+/// on round-off: on this mesh it does; on 20 × 40 it returns a "solution"
+/// with residual 2.9, which the direct solver's true-residual test now
+/// reports as not converged.)
+const SPLITTING_SCENE: &str = include_str!("scenes/edge_crack_cut_through.json");
 
 /// When the final cracks cut the specimen in two, their solve fails (no
 /// stiffness against the free piece's motion): the run ends without an

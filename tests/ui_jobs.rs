@@ -497,21 +497,7 @@ fn a_drawn_crack_takes_the_last_edited_cracks_friction() {
 /// An edge crack grown through the specimen under tension, saved as the
 /// run ended (`growth.resume`): the piece above the crack is held by
 /// nothing once its faces open.
-const EDGE_CRACK: &str = r#"{
-  "name": "Edge crack cut through",
-  "specimen": { "width": 1.0, "height": 2.0, "thickness": 1.0 },
-  "mesh": { "nx": 21, "ny": 42 },
-  "material": { "young": 2e11, "poisson": 0.3, "plane": "strain" },
-  "cracks": [{ "points": [[0.0, 1.01], [0.7, 1.01]] }],
-  "boundary": {
-    "bottom": { "kind": "roller" },
-    "left": { "kind": "free" },
-    "top": { "kind": "traction", "normal": 1e6, "shear": 0.0 },
-    "right": { "kind": "free" },
-    "points": [{ "at": [0.0, 0.0], "fix": "x" }]
-  },
-  "growth": { "control": "critical", "max_steps": 30, "max_load_factor": 1000.0 }
-}"#;
+const EDGE_CRACK: &str = include_str!("scenes/edge_crack_cut_through.json");
 
 /// A specimen cut in two is detected and named: Solve on the saved
 /// cut-through edge crack (direct solver: a non-positive pivot; before, a

@@ -10,21 +10,7 @@ use common::*;
 
 /// An edge crack under tension, 1 m × 2 m, roller at the bottom, one point
 /// fixed in x; critical control grows it through to the right edge.
-const EDGE_CRACK: &str = r#"{
-  "name": "Edge crack cut through",
-  "specimen": { "width": 1.0, "height": 2.0, "thickness": 1.0 },
-  "mesh": { "nx": 21, "ny": 42 },
-  "material": { "young": 2e11, "poisson": 0.3, "plane": "strain" },
-  "cracks": [{ "points": [[0.0, 1.01], [0.7, 1.01]] }],
-  "boundary": {
-    "bottom": { "kind": "roller" },
-    "left": { "kind": "free" },
-    "top": { "kind": "traction", "normal": 1e6, "shear": 0.0 },
-    "right": { "kind": "free" },
-    "points": [{ "at": [0.0, 0.0], "fix": "x" }]
-  },
-  "growth": { "control": "critical", "max_steps": 30, "max_load_factor": 1000.0 }
-}"#;
+const EDGE_CRACK: &str = include_str!("../../../tests/scenes/edge_crack_cut_through.json");
 
 /// The edge crack grown until it cuts the specimen through, saved as the
 /// run ended (its cracks and `growth.resume`, which `cdca solve` opens).

@@ -247,7 +247,7 @@ fn crossings(cracks: &[Crack]) -> impl Iterator<Item = (usize, usize)> + '_ {
 }
 
 /// Root of `i` in a union–find forest (with path halving).
-fn root(parent: &mut [usize], mut i: usize) -> usize {
+pub fn root(parent: &mut [usize], mut i: usize) -> usize {
     while parent[i] != i {
         parent[i] = parent[parent[i]];
         i = parent[i];

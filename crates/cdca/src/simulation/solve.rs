@@ -10,7 +10,8 @@ use crate::contact::law::{ContactState, FaceState, counts};
 use crate::error::SolveError;
 use crate::fracture::rock::{RockStrength, intact_rock};
 use crate::fracture::tips::evaluate_tips;
-use crate::geometry::cracks::split_specimen;
+use crate::geometry::cracks::{root, split_specimen};
+use crate::geometry::plane::{P2, segment_intersection};
 use crate::report::{ContactReport, FreePieceReport, IntactRockReport, SolveReport, SolverReport};
 use crate::scene::SideBc;
 
@@ -129,91 +130,87 @@ impl Simulation {
 
 impl Simulation {
     /// The first piece of the specimen that nothing holds at the current
-    /// contact states (see the module docs), or `None`.
+    /// contact states (see the comment above), or `None`.
     pub fn free_piece(&self) -> Option<FreePieceReport> {
         if !split_specimen(&self.state.cracks) {
             return None;
         }
-        let scene = self.scene();
-        let (nx, ny) = (scene.mesh.nx, scene.mesh.ny);
-        let (w, h) = (scene.specimen.width, scene.specimen.height);
-        let (dx, dy) = (w / nx as f64, h / ny as f64);
-        let centre = |e: usize| [((e % nx) as f64 + 0.5) * dx, ((e / nx) as f64 + 0.5) * dy];
-        let element_at = |p: [f64; 2]| {
-            let i = ((p[0] / dx).floor().max(0.0) as usize).min(nx - 1);
-            let j = ((p[1] / dy).floor().max(0.0) as usize).min(ny - 1);
-            j * nx + i
+        let mesh = &self.model.mesh;
+        let n = mesh.element_count();
+        let centre = |e: usize| {
+            let (lo, hi) = mesh.element_box(e);
+            (lo + hi) / 2.0
         };
-        let cracks = self.cracks();
-        let cut = |a: [f64; 2], b: [f64; 2]| {
-            cracks
-                .iter()
-                .position(|c| c.windows(2).any(|s| crosses(a, b, s[0], s[1])))
+        let cut = |a: P2, b: P2| {
+            self.state.cracks.iter().position(|c| {
+                c.segments()
+                    .any(|(p, q)| segment_intersection(a, b, p, q).is_some())
+            })
         };
-        let mut parent: Vec<usize> = (0..nx * ny).collect();
+        let mut parent: Vec<usize> = (0..n).collect();
+        let union = |parent: &mut Vec<usize>, a: usize, b: usize| {
+            let (ra, rb) = (root(parent, a), root(parent, b));
+            parent[ra] = rb;
+        };
         let mut cutting = Vec::new();
-        for e in 0..nx * ny {
-            let (i, j) = (e % nx, e / nx);
-            let mut join = |f: usize| match cut(centre(e), centre(f)) {
-                None => union(&mut parent, e, f),
-                Some(c) => cutting.push((e, f, c)),
-            };
-            if i + 1 < nx {
-                join(e + 1);
-            }
-            if j + 1 < ny {
-                join(e + nx);
+        for e in 0..n {
+            let (i, j) = (e % mesh.nx, e / mesh.nx);
+            let right = (i + 1 < mesh.nx).then_some(e + 1);
+            let above = (j + 1 < mesh.ny).then_some(e + mesh.nx);
+            for f in right.into_iter().chain(above) {
+                match cut(centre(e), centre(f)) {
+                    None => union(&mut parent, e, f),
+                    Some(c) => cutting.push((e, f, c)),
+                }
             }
         }
         // faces in contact hold the pieces on either side together
-        let eps = 0.5 * dx.min(dy);
+        let eps = 0.5 * mesh.hx.min(mesh.hy);
         for p in self.contact_points() {
             if p.state != ContactState::Open {
-                let [x, y] = [p.x, p.y];
-                let a = element_at([x + eps * p.normal[0], y + eps * p.normal[1]]);
-                let b = element_at([x - eps * p.normal[0], y - eps * p.normal[1]]);
-                union(&mut parent, a, b);
+                let (x, nrm) = (P2::new(p.x, p.y), P2::new(p.normal[0], p.normal[1]));
+                if let (Some(a), Some(b)) = (
+                    mesh.element_at(x + eps * nrm),
+                    mesh.element_at(x - eps * nrm),
+                ) {
+                    union(&mut parent, a, b);
+                }
             }
         }
-        let mut held = vec![false; nx * ny];
-        let b = &scene.boundary;
+        let mut held = vec![false; n];
+        let b = &self.scene().boundary;
         let supports = |s: SideBc| matches!(s, SideBc::Fixed | SideBc::Roller);
-        let mut hold = |e: usize, parent: &mut Vec<usize>| {
-            let r = root(parent, e);
-            held[r] = true;
-        };
-        for i in 0..nx {
-            if supports(b.bottom) {
-                hold(i, &mut parent);
-            }
-            if supports(b.top) {
-                hold((ny - 1) * nx + i, &mut parent);
-            }
-        }
-        for j in 0..ny {
-            if supports(b.left) {
-                hold(j * nx, &mut parent);
-            }
-            if supports(b.right) {
-                hold(j * nx + nx - 1, &mut parent);
-            }
-        }
-        for p in &b.points {
-            hold(element_at(p.at), &mut parent);
-        }
-        let free_root = (0..nx * ny).find(|&e| {
+        let (nx, ny) = (mesh.nx, mesh.ny);
+        let supported = (0..nx)
+            .filter(|_| supports(b.bottom))
+            .chain(
+                (0..nx)
+                    .filter(|_| supports(b.top))
+                    .map(|i| (ny - 1) * nx + i),
+            )
+            .chain((0..ny).filter(|_| supports(b.left)).map(|j| j * nx))
+            .chain(
+                (0..ny)
+                    .filter(|_| supports(b.right))
+                    .map(|j| j * nx + nx - 1),
+            )
+            .chain(
+                b.points
+                    .iter()
+                    .filter_map(|p| mesh.element_at(P2::new(p.at[0], p.at[1]))),
+            )
+            .collect::<Vec<_>>();
+        for e in supported {
             let r = root(&mut parent, e);
-            !held[r]
-        })?;
+            held[r] = true;
+        }
+        let free_root = (0..n).find(|&e| !held[root(&mut parent, e)])?;
         let free_root = root(&mut parent, free_root);
-        let members: Vec<usize> = (0..nx * ny)
+        let members: Vec<usize> = (0..n)
             .filter(|&e| root(&mut parent, e) == free_root)
             .collect();
-        let n = members.len() as f64;
-        let (sx, sy) = members.iter().fold((0.0, 0.0), |(sx, sy), &e| {
-            let c = centre(e);
-            (sx + c[0], sy + c[1])
-        });
+        let sum = members.iter().fold(P2::zeros(), |s, &e| s + centre(e));
+        let mid = sum / members.len() as f64;
         let mut bounding: Vec<usize> = cutting
             .iter()
             .filter(|&&(e, f, _)| {
@@ -225,48 +222,8 @@ impl Simulation {
         bounding.dedup();
         Some(FreePieceReport {
             elements: members.len(),
-            centroid: [sx / n, sy / n],
+            centroid: [mid.x, mid.y],
             cracks: bounding,
         })
-    }
-}
-
-fn root(parent: &mut [usize], mut i: usize) -> usize {
-    while parent[i] != i {
-        parent[i] = parent[parent[i]];
-        i = parent[i];
-    }
-    i
-}
-
-fn union(parent: &mut [usize], a: usize, b: usize) {
-    let (ra, rb) = (root(parent, a), root(parent, b));
-    parent[ra] = rb;
-}
-
-/// The segments `a`–`b` and `c`–`d` cross or touch (orientation tests; a
-/// crack ending on the segment cuts it).
-fn crosses(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
-    let orient = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| {
-        (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])
-    };
-    let (d1, d2) = (orient(c, d, a), orient(c, d, b));
-    let (d3, d4) = (orient(a, b, c), orient(a, b, d));
-    d1 * d2 <= 0.0 && d3 * d4 <= 0.0 && (d1 != 0.0 || d2 != 0.0 || d3 != 0.0 || d4 != 0.0)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::crosses;
-
-    #[test]
-    fn segments_cross_touch_or_miss() {
-        assert!(crosses([0.0, 0.0], [1.0, 0.0], [0.5, -1.0], [0.5, 1.0]));
-        assert!(
-            crosses([0.0, 0.0], [1.0, 0.0], [0.5, 0.0], [0.5, 1.0]),
-            "a crack ending on it"
-        );
-        assert!(!crosses([0.0, 0.0], [1.0, 0.0], [0.5, 0.1], [0.5, 1.0]));
-        assert!(!crosses([0.0, 0.0], [1.0, 0.0], [2.0, -1.0], [2.0, 1.0]));
     }
 }

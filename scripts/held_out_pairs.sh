@@ -1,76 +1,106 @@
 #!/usr/bin/env bash
-# Held-out flaw pairs (docs/fracture-model.md, "Coalescence"): the bundled stepped and
-# overlapping layouts centred in the specimen, then one thing varied at a
-# time (offset across or along the load, flaw angle, friction), each grown
-# to failure with `cdca grow` (100 × 100, product defaults). Prints one row
-# per run (outcome, steps, whether every step converged, the steps at which
-# a grown tip ended on the other crack) and writes bench-out/pairs.csv,
-# and the summary rows that `bash scripts/docs.sh` puts in docs/.
-# Usage: bash scripts/held_out_pairs.sh
+# Held-out flaw pairs (docs/fracture-model.md, "Coalescence"): 8 pairs of each
+# layout (coplanar, stepped, overlapping) drawn at random, with a fixed seed,
+# across the range of issue 34: flaws 3-4 mm long at 35-60° to the
+# horizontal, face friction 0-0.6, a bridge between the facing tips of
+# 0.7-1.3 flaw lengths; centred in the 30 mm specimen of the bundled pairs
+# (100 × 100, product defaults: the contact a drawn crack gets, critical
+# control), each grown to failure with `cdca grow`. Prints one row per run
+# (outcome, steps, whether every step converged, secondary cracks, the
+# first coalescence: step, λ_cr and what it joins), writes
+# bench-out/pairs.csv, and the summary rows that `bash scripts/docs.sh`
+# puts in docs/.
+# Usage: [JOBS=2] bash scripts/held_out_pairs.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p cdca-cli
 mkdir -p bench-out/pairs
-python3 - <<'PY'
-import csv, json, math, subprocess, sys
-sys.path.insert(0, "scripts")
-from polyline import on_polyline
+JOBS="${JOBS:-2}" python3 - <<'PY'
+import csv, json, math, os, random, subprocess
+from concurrent.futures import ThreadPoolExecutor
 base = json.load(open("assets/scenes/specimen_two_flaws_stepped.json"))
+W = base["specimen"]["width"]
 
-def flaw(cx, cy, deg, mu, length=0.003):
-    a = math.radians(deg)
-    dx, dy = 0.5 * length * math.cos(a), 0.5 * length * math.sin(a)
-    return {"points": [[cx - dx, cy - dy], [cx + dx, cy + dy]], "friction": mu}
+def unit(deg):
+    return (math.cos(math.radians(deg)), math.sin(math.radians(deg)))
 
-# (layout, offset across, offset along the load (mm), angle (deg), friction)
-runs = [("stepped", 1.6, 5, 45, 0.5), ("stepped", 1.0, 5, 45, 0.5), ("stepped", 2.2, 5, 45, 0.5),
-        ("stepped", 1.6, 4, 45, 0.5), ("stepped", 1.6, 6, 45, 0.5), ("stepped", 1.6, 5, 40, 0.5),
-        ("stepped", 1.6, 5, 50, 0.5), ("stepped", 1.6, 5, 45, 0.3),
-        ("overlapping", 2.8, -1.2, 45, 0.5), ("overlapping", 2.4, -1.2, 45, 0.5),
-        ("overlapping", 3.2, -1.2, 45, 0.5), ("overlapping", 2.8, -0.8, 45, 0.5),
-        ("overlapping", 2.8, -1.6, 45, 0.5), ("overlapping", 2.8, -1.2, 40, 0.5),
-        ("overlapping", 2.8, -1.2, 50, 0.5), ("overlapping", 2.8, -1.2, 45, 0.3)]
-rows = []
-print(f"{'layout':12s} {'across':>6s} {'along':>6s} {'angle':>5s} {'mu':>4s}  {'outcome':14s} {'steps':>5s} {'converged':>9s}  links at steps")
-for layout, dx, dy, deg, mu in runs:
+def pair(layout, length, deg, bridge):
+    """The two flaws' end points (m), the pair centred in the specimen. The
+    bridge runs from the first flaw's upper end to the second flaw's lower
+    end: along the flaws (coplanar), up and slightly back, as in the bundled
+    stepped pair (stepped), or down across the flaws, as in the bundled
+    overlapping pair (overlapping)."""
+    e = unit(deg)
+    a0, a1 = (0.0, 0.0), (length * e[0], length * e[1])
+    d = {"coplanar": e, "stepped": (-0.177, 0.984), "overlapping": (0.2, -0.98)}[layout]
+    b0 = (a1[0] + bridge * d[0], a1[1] + bridge * d[1])
+    b1 = (b0[0] + length * e[0], b0[1] + length * e[1])
+    pts = [a0, a1, b0, b1]
+    cx = 0.5 * (min(p[0] for p in pts) + max(p[0] for p in pts))
+    cy = 0.5 * (min(p[1] for p in pts) + max(p[1] for p in pts))
+    shift = lambda p: [0.5 * W + p[0] - cx, 0.5 * W + p[1] - cy]
+    return [[shift(a0), shift(a1)], [shift(b0), shift(b1)]]
+
+runs = []
+for k, layout in enumerate(("coplanar", "stepped", "overlapping")):
+    rng = random.Random(34 + k)
+    for _ in range(8):
+        length = rng.uniform(3e-3, 4e-3)
+        runs.append((layout, length, rng.uniform(35, 60), round(rng.uniform(0, 0.6), 2),
+                     rng.uniform(0.7, 1.3)))
+
+def grow(run):
+    layout, length, deg, mu, ratio = run
     scene = json.loads(json.dumps(base))
     scene["name"] = f"held-out {layout} pair"
-    scene["cracks"] = [flaw(0.015 - dx / 2e3, 0.015 - dy / 2e3, deg, mu),
-                       flaw(0.015 + dx / 2e3, 0.015 + dy / 2e3, deg, mu)]
-    path = f"bench-out/pairs/{layout}_{dx}_{dy}_{deg}_{mu}.json"
+    scene["cracks"] = [{"points": p, "friction": mu} for p in pair(layout, length, deg, ratio * length)]
+    path = f"bench-out/pairs/{layout}_{length * 1e3:.2f}_{deg:.1f}_{mu}_{ratio:.2f}.json"
     json.dump(scene, open(path, "w"), indent=1)
     # exit 1 (a step that did not converge) still prints the history
-    report = json.loads(subprocess.run(["./target/release/cdca", "grow", path],
-                                       capture_output=True, text=True).stdout)
-    links = sorted({s["step"] for s in report["steps"] for g in s["grown"]
-                    if any(k != g["crack"] and on_polyline((g["x"], g["y"]), c)
-                           for k, c in enumerate(report["cracks"]))})
+    return json.loads(subprocess.run(["./target/release/cdca", "grow", path],
+                                     capture_output=True, text=True).stdout)
+
+with ThreadPoolExecutor(int(os.environ["JOBS"])) as pool:
+    reports = list(pool.map(grow, runs))
+rows = []
+print(f"{'layout':12s} {'mm':>4s} {'angle':>5s} {'mu':>4s} {'bridge':>6s}  {'outcome':14s} {'steps':>5s} "
+      f"{'converged':>9s} {'secondary':>9s}  first coalescence")
+for (layout, length, deg, mu, ratio), report in zip(runs, reports):
     converged = all(s["converged"] for s in report["steps"])
-    rows.append([layout, dx, dy, deg, mu, report["outcome"], len(report["steps"]), converged,
-                 " ".join(map(str, links))])
-    print(f"{layout:12s} {dx:6.1f} {dy:6.1f} {deg:5d} {mu:4.1f}  {report['outcome']:14s} "
-          f"{len(report['steps']):5d} {str(converged):>9s}  {' '.join(map(str, links)) or '-'}", flush=True)
+    secondary = sum(len(s.get("started", [])) for s in report["steps"])
+    c = report.get("coalescence")
+    link = f"step {c['step']}, λ {c['load_factor']:.2f}, {c['category']}" if c else "-"
+    rows.append([layout, f"{length * 1e3:.2f}", f"{deg:.1f}", mu, f"{ratio:.2f}", report["outcome"],
+                 len(report["steps"]), converged, secondary, c["step"] if c else "",
+                 f"{c['load_factor']:.3f}" if c else "", c["category"] if c else ""])
+    print(f"{layout:12s} {length * 1e3:4.2f} {deg:5.1f} {mu:4.2f} {ratio:6.2f}  {report['outcome']:14s} "
+          f"{len(report['steps']):5d} {str(converged):>9s} {secondary:9d}  {link}", flush=True)
 with open("bench-out/pairs.csv", "w", newline="") as f:
     w = csv.writer(f)
-    w.writerow(["layout", "across_mm", "along_mm", "angle_deg", "friction", "outcome", "steps",
-                "every_step_converged", "link_steps"])
+    w.writerow(["layout", "flaw_mm", "angle_deg", "friction", "bridge_over_flaw", "outcome", "steps",
+                "every_step_converged", "secondary_cracks", "coalescence_step", "coalescence_load_factor",
+                "coalescence_category"])
     w.writerows(rows)
 # the summary table of docs/fracture-model.md (*Coalescence*), between its
 # markers through `bash scripts/docs.sh`
-import os
 out = os.path.join(os.environ.get("CARGO_TARGET_DIR", "target"), "docs", "held-out-pairs")
 os.makedirs(out, exist_ok=True)
-for key, layout in (("1", "stepped"), ("2", "overlapping")):
-    runs = [r for r in rows if r[0] == layout]
-    firsts = sorted(int(r[8].split()[0]) for r in runs if r[8])
+for key, layout in enumerate(("coplanar", "stepped", "overlapping")):
+    mine = [r for r in rows if r[0] == layout]
+    firsts = sorted(r[9] for r in mine if r[9] != "")
     linked = f"{len(firsts)}"
     if firsts:
-        linked += f" (first links at steps {firsts[0]}–{firsts[-1]})" if firsts[0] != firsts[-1] else f" (first link at step {firsts[0]})"
+        linked += f" (steps {firsts[0]}–{firsts[-1]})" if firsts[0] != firsts[-1] else f" (step {firsts[0]})"
+    kinds = {}
+    for r in mine:
+        if r[11]:
+            kinds[r[11]] = kinds.get(r[11], 0) + 1
+    how = ", ".join(f"{n} {k}" for k, n in sorted(kinds.items(), key=lambda x: (-x[1], x[0]))) or "–"
     outcomes = {}
-    for r in runs:
+    for r in mine:
         outcomes[r[5]] = outcomes.get(r[5], 0) + 1
     text = ", ".join(f"{n} {o}" for o, n in sorted(outcomes.items(), key=lambda x: (-x[1], x[0])))
-    with open(os.path.join(out, f"{key}-{layout}.md"), "w") as f:
-        f.write(f"| {layout} | {len(runs)} | {linked} | {sum(r[7] for r in runs)} | {text} |\n")
+    with open(os.path.join(out, f"{key + 1}-{layout}.md"), "w") as f:
+        f.write(f"| {layout} | {len(mine)} | {linked} | {how} | {sum(r[7] for r in mine)} | {text} |\n")
 print(f"wrote bench-out/pairs.csv and {out}/")
 PY

@@ -214,6 +214,23 @@ fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure>
                 ),
             }),
     );
+    // the first link between two flaws (coalescence), and where secondary
+    // cracks started
+    if let Some((s, l)) = h
+        .iter()
+        .find_map(|s| s.links.iter().find(|l| l.coalescence).map(|l| (s, l)))
+    {
+        notes.push(Note {
+            at: point(s),
+            text: format!(
+                "λ = {:.3}: flaws {} and {} linked ({})",
+                s.load_factor,
+                l.flaws[0] + 1,
+                l.flaws[1] + 1,
+                l.category()
+            ),
+        });
+    }
     if let (true, Some(cap), Some(last)) = (capped, &view.load_cap, h.last()) {
         notes.push(Note {
             at: point(last),
@@ -229,6 +246,19 @@ fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure>
         style: Style::LineAndMarkers,
         points: h.iter().map(point).collect(),
     }];
+    let started: Vec<[f64; 2]> = h
+        .iter()
+        .filter(|s| !s.started.is_empty())
+        .map(point)
+        .collect();
+    if !started.is_empty() {
+        series.push(Series {
+            name: "a secondary crack started at a kink".to_owned(),
+            colour: colour(2),
+            style: Style::Markers,
+            points: started,
+        });
+    }
     // u is linear in the load: the rock fails at λ / u
     let rock: Vec<[f64; 2]> = h
         .iter()

@@ -23,6 +23,8 @@ pub struct SolutionView {
     pub live: bool,
     /// Crack polylines as simulated (grown segments included), m.
     pub cracks: Vec<Vec<[f64; 2]>>,
+    /// Per crack: started at another crack's kink (a secondary crack).
+    pub secondary: Vec<bool>,
     /// Every free tip after the last solve.
     pub tips: Vec<TipReport>,
     pub contact: Vec<ContactPointView>,
@@ -85,6 +87,7 @@ impl SolutionView {
         self.solver = sim.scene().solver.kind;
         self.rebuild = sim.rebuild_progress();
         self.cracks = sim.cracks();
+        self.secondary = sim.lineage().iter().map(|l| l.drawn == 0).collect();
         self.load_factor = sim.load_factor();
         self.outcome = sim.growth_finished();
         self.load_cap = sim.load_cap();

@@ -321,7 +321,13 @@ impl Canvas {
         } else {
             &input.solution.cracks
         };
-        symbols::paint_cracks(painter, &view, cracks, editor.selected_crack);
+        symbols::paint_cracks(
+            painter,
+            &view,
+            cracks,
+            &input.solution.secondary,
+            editor.selected_crack,
+        );
         if s.show_contact {
             symbols::paint_contact(
                 painter,
@@ -332,7 +338,7 @@ impl Canvas {
         }
         symbols::paint_tips(painter, &view, &input.solution.tips, input.selected_tip);
         if !input.solution.tips.is_empty() {
-            symbols::paint_tip_key(painter, view.rect);
+            symbols::paint_tip_key(painter, view.rect, input.solution.secondary.contains(&true));
         }
         if editor.tool == Tool::Select {
             symbols::paint_handles(painter, &view, scene, hovered_vertex);

@@ -13,6 +13,8 @@ use crate::units;
 pub const LOAD_COLOR: Color32 = Color32::from_rgb(230, 60, 60);
 pub const SUPPORT_COLOR: Color32 = Color32::from_rgb(90, 160, 255);
 pub const CRACK_COLOR: Color32 = Color32::from_rgb(20, 20, 20);
+/// Cracks started at another crack's kink (secondary cracks).
+pub const SECONDARY_COLOR: Color32 = Color32::from_rgb(150, 40, 170);
 pub const HANDLE_COLOR: Color32 = Color32::from_rgb(255, 210, 0);
 
 /// Colour of a contact state: open grey-blue, stick green, slip orange.
@@ -240,12 +242,18 @@ pub fn paint_cracks(
     painter: &Painter,
     view: &ViewTransform,
     cracks: &[Vec<[f64; 2]>],
+    secondary: &[bool],
     selected: Option<usize>,
 ) {
     for (i, c) in cracks.iter().enumerate() {
         let points: Vec<Pos2> = c.iter().map(|&p| view.screen_from_world(p)).collect();
         let width = if selected == Some(i) { 4.0 } else { 2.5 };
-        painter.add(Shape::line(points, Stroke::new(width, CRACK_COLOR)));
+        let colour = if secondary.get(i) == Some(&true) {
+            SECONDARY_COLOR
+        } else {
+            CRACK_COLOR
+        };
+        painter.add(Shape::line(points, Stroke::new(width, colour)));
     }
 }
 
@@ -299,21 +307,29 @@ pub fn paint_tips(
 
 /// The key to the tip markers, at the canvas's bottom right (the pointer's
 /// position is at the bottom left): each marker's colour is the decision
-/// at that tip, the ring the inspected tip.
-pub fn paint_tip_key(painter: &Painter, canvas: egui::Rect) {
-    let rows = [
-        (Some(tip_color(Mode::Tension)), "tip grows in tension"),
-        (Some(tip_color(Mode::Shear)), "tip grows in shear"),
-        (Some(tip_color(Mode::None)), "tip does not grow"),
-        (None, "inspected tip"),
+/// at that tip, the ring the inspected tip; with `secondary`, the colour of
+/// the secondary cracks too.
+pub fn paint_tip_key(painter: &Painter, canvas: egui::Rect, secondary: bool) {
+    let mut rows = vec![
+        (Key::Tip(tip_color(Mode::Tension)), "tip grows in tension"),
+        (Key::Tip(tip_color(Mode::Shear)), "tip grows in shear"),
+        (Key::Tip(tip_color(Mode::None)), "tip does not grow"),
+        (Key::Ring, "inspected tip"),
     ];
+    if secondary {
+        rows.push((Key::Line(SECONDARY_COLOR), "secondary crack (from a kink)"));
+    }
     let font = FontId::proportional(11.0);
     let mut y = canvas.bottom() - 10.0 - 16.0 * (rows.len() - 1) as f32;
-    for (colour, text) in rows {
+    for (key, text) in rows {
         let q = Pos2::new(canvas.right() - 14.0, y);
-        match colour {
-            Some(c) => painter.circle(q, 5.0, c, Stroke::new(1.5, Color32::BLACK)),
-            None => painter.circle_stroke(q, 7.0, Stroke::new(2.0, HANDLE_COLOR)),
+        match key {
+            Key::Tip(c) => painter.circle(q, 5.0, c, Stroke::new(1.5, Color32::BLACK)),
+            Key::Ring => painter.circle_stroke(q, 7.0, Stroke::new(2.0, HANDLE_COLOR)),
+            Key::Line(c) => painter.line_segment(
+                [q - vec2(7.0, 0.0), q + vec2(7.0, 0.0)],
+                Stroke::new(2.5, c),
+            ),
         };
         painter.text(
             q - vec2(12.0, 0.0),
@@ -324,6 +340,13 @@ pub fn paint_tip_key(painter: &Painter, canvas: egui::Rect) {
         );
         y += 16.0;
     }
+}
+
+/// A row's symbol in [`paint_tip_key`].
+enum Key {
+    Tip(Color32),
+    Ring,
+    Line(Color32),
 }
 
 /// Editable vertices of the scene's cracks.

@@ -477,6 +477,16 @@ fn growth_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
                     ),
                 }
                 count_row(ui, t, "Max steps", &mut g.max_steps, 1..=100_000);
+                ui.label("Secondary cracks");
+                let r = ui
+                    .checkbox(&mut g.secondary_cracks, "start at sharp kinks")
+                    .on_hover_text(
+                        "A crack's sharp kinks (a flaw's end that a wing has left) are sites of \
+                         the criterion, read on r0 from the field: where it is met a new crack \
+                         starts there (growth.secondary_cracks). Off: only free tips grow.",
+                    );
+                t.track(&r);
+                ui.end_row();
             });
         });
 }

@@ -103,6 +103,7 @@ fn grow(
         cracks: sim.cracks(),
         error: failed.as_ref().map(|e| format!("step {next}: {e}")),
         load_cap: sim.load_cap(),
+        coalescence: sim.coalescence(),
     };
     (report, failed)
 }

@@ -3,6 +3,8 @@
 
 use serde::{Deserialize, Serialize};
 
+pub use crate::scene::Part;
+
 /// Output of `cdca solve`: one solve at full load, no growth.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct SolveReport {
@@ -22,6 +24,93 @@ pub struct SolveReport {
     /// and not `converged`, whatever the linear solver reported.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub free_piece: Option<FreePieceReport>,
+    /// Every sharp kink of the cracks evaluated as a secondary-crack site
+    /// (left out when there is none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub kinks: Vec<KinkReport>,
+}
+
+/// A sharp kink of a crack (a flaw's end that a wing has left, or any
+/// turn of at least `SHARP_TURN_DEG`) evaluated by the criterion on the
+/// computed field around it: where it is met a secondary crack starts
+/// (SPEC §8).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct KinkReport {
+    pub crack: usize,
+    /// Index of the vertex in the crack's points.
+    pub vertex: usize,
+    /// m
+    pub x: f64,
+    /// m
+    pub y: f64,
+    /// Turn of the crack at the vertex, degrees.
+    pub turn_deg: f64,
+    /// The criterion's decision (`none`: no crack starts here).
+    pub mode: Mode,
+    /// Direction of the crack it would start, degrees counter-clockwise
+    /// from +x.
+    pub direction_deg: f64,
+    /// That direction off the straight continuation of the nearer arm,
+    /// degrees (0: the arm carried straight on).
+    pub off_arm_deg: f64,
+    /// Demand over strength of the criterion's checks (≥ 1: it starts).
+    pub utilisation: f64,
+}
+
+/// A secondary crack started at a kink in a growth step.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct StartedCrack {
+    /// Index of the new crack (appended to the scene's `cracks`).
+    pub crack: usize,
+    /// The crack it starts on, and the kink's vertex there.
+    pub on: usize,
+    pub vertex: usize,
+    /// Start (the kink), m.
+    pub x: f64,
+    pub y: f64,
+    /// Its free tip after the step, m.
+    pub tip_x: f64,
+    pub tip_y: f64,
+    pub mode: Mode,
+    /// Direction, degrees counter-clockwise from +x.
+    pub direction_deg: f64,
+    /// Off the straight continuation of the kink's nearer arm, degrees.
+    pub off_arm_deg: f64,
+}
+
+/// A grown tip that ended on another crack in a growth step (a
+/// junction): what it joins. Two cracks that belong to different flaws
+/// (each crack belongs to the flaw it grew from) have coalesced.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct LinkReport {
+    pub crack: usize,
+    pub tip: usize,
+    /// The crack it ended on.
+    pub main: usize,
+    /// The part the tip belongs to, and the part of `main` it ended on.
+    pub joins: [Part; 2],
+    /// The drawn cracks (flaws) the two belong to.
+    pub flaws: [usize; 2],
+    /// The two flaws differ (and were not linked before): coalescence.
+    pub coalescence: bool,
+}
+
+impl LinkReport {
+    /// The coalescence category: what the link joins, `"wing–flaw"`,
+    /// `"secondary–secondary"`, … (the growing part first).
+    pub fn category(&self) -> String {
+        format!("{}–{}", self.joins[0].name(), self.joins[1].name())
+    }
+}
+
+/// The first coalescence of a growth run: two flaws linked.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct CoalescenceReport {
+    pub step: usize,
+    pub load_factor: f64,
+    /// What the link joins ([`LinkReport::category`]).
+    pub category: String,
+    pub flaws: [usize; 2],
 }
 
 /// A piece of the specimen cut off by cracks and held by nothing: no
@@ -205,6 +294,10 @@ pub struct GrowReport {
     /// that cap, and the sentence saying so.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub load_cap: Option<LoadCapReport>,
+    /// The first step at which two flaws linked, and how (left out when
+    /// none did).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coalescence: Option<CoalescenceReport>,
 }
 
 /// A growth run stopped by `growth.max_load_factor` (critical control).
@@ -289,6 +382,16 @@ pub struct GrowthStepReport {
     /// `unsolved_trials`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub cold_trials: Vec<f64>,
+    /// Secondary cracks started at kinks in this step (left out when none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub started: Vec<StartedCrack>,
+    /// Grown tips that ended on another crack in this step (left out when
+    /// none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub links: Vec<LinkReport>,
+    /// Every kink evaluated at this step's load (left out when none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub kinks: Vec<KinkReport>,
 }
 
 /// A tip that grew in a step: its new position and how it grew.

@@ -12,6 +12,14 @@ use cdca::scene::{
 use common::docs_row::{record_row, verification_row};
 use common::*;
 
+/// The scene with only free tips growing (`growth.secondary_cracks`
+/// false): the tests that call it pin paths, loads or solver events
+/// recorded on wings alone, before kinks started secondary cracks.
+fn wings_only(mut s: SceneFile) -> SceneFile {
+    s.growth.secondary_cracks = false;
+    s
+}
+
 fn run(sim: &mut Simulation) {
     while sim.growth_finished().is_none() {
         sim.grow_step().expect("growth step");
@@ -192,7 +200,7 @@ fn end_angle_from_vertical(p: &[[f64; 2]], len: f64) -> f64 {
 #[test]
 fn wing_cracks_curve_toward_the_load() {
     let a = 0.0034;
-    let mut sim = Simulation::new(valid(wing_scene(100, None))).expect("valid");
+    let mut sim = Simulation::new(valid(wings_only(wing_scene(100, None)))).expect("valid");
     run(&mut sim);
     let steps = sim.history();
     println!("outcome {:?}", sim.growth_finished());
@@ -476,80 +484,42 @@ fn stepped_flaws_coalesce() {
 }
 
 /// Coalescence of overlapping flaws under the product's defaults (critical
-/// control, default criterion), issue "overlapping pair does not link":
-/// the bundled overlapping pair on a coarser mesh (80 × 80; at 100 × 100 it
-/// links at step 31, see docs/fracture-model.md) and a held-out overlapping pair (two
-/// 3.4 mm flaws at 50°, the second 2.6 mm to the right and 1.5 mm below,
-/// 100 × 100). Within 30 steps, every one converged, a wing grown from one
-/// flaw ends on the other flaw's crack (a junction), and that wing is at
-/// least one flaw length long: it crossed the rock bridge. Before closed
-/// wings were evaluated on the computed field (and the faces' shear branch
-/// in their own plane), their inner wings saw-toothed ±70° and neither
-/// pair linked in 30 steps.
+/// control, default criterion, secondary cracks): the bundled overlapping
+/// pair (100 × 100) and a held-out overlapping pair (two 3.4 mm flaws at
+/// 50°, the second 2.6 mm to the right and 1.5 mm below) link within 40
+/// steps, every one converged (the grow report's `coalescence`).
 ///
-/// Ignored since the radius follows the flaw's size (issue 17): the inner
-/// tips of side-by-side flaws grow their wings away from the bridge (the
-/// upper flaw's up, the lower flaw's down) and the wings run parallel to
-/// the specimen's ends. With the default contact the bundled pair links at
-/// 100 × 100 (the left flaw's upper wing runs onto the right flaw's upper
-/// wing at step 31) but not at 80 × 80 within 30 steps, nor does the
-/// held-out pair: a link between parallel wings, sensitive to the mesh. The
-/// experiments' link runs through the bridge from a tip that already has a
-/// wing, which needs a second crack from that tip (branching), not in the
-/// model yet.
+/// Ignored (issue 34): side-by-side flaws do not link yet. Their inner ends'
+/// wings grow away from the strip between the flaws (the upper flaw's up,
+/// the lower flaw's down), and the secondary cracks those ends start run
+/// on in the flaws' own plane, out of the strip too: the kink's largest
+/// shear check is there, 0–2° off the flaw. The link the experiments show
+/// crosses the strip (1 of 8 held-out overlapping pairs links, at step 40;
+/// docs/fracture-model.md, *Secondary cracks*).
 #[test]
-#[ignore = "issue 17: side-by-side flaws need branching to link"]
+#[ignore = "issue 34: overlapping flaws' secondary cracks leave the strip between them"]
 fn overlapping_flaws_coalesce() {
     let text = include_str!("../../../assets/scenes/specimen_two_flaws_overlapping.json");
-    let mut bundled = Scene::from_json(text).expect("scene").into_file();
-    bundled.mesh.nx = 80;
-    bundled.mesh.ny = 80;
+    let bundled = Scene::from_json(text).expect("scene").into_file();
     let held_out = flaw_pair((0.01391, 0.01537), [0.0026, -0.0015]);
-    for (name, scene) in [("bundled, 80 × 80", bundled), ("held out", held_out)] {
-        let flaws: Vec<Vec<[f64; 2]>> = scene
-            .cracks
-            .iter()
-            .map(|c| c.points.clone().expect("points"))
-            .collect();
-        let sim = grow_until_junction(name, scene);
-        let x = sim.xfem();
-        let joined: Vec<(usize, usize, usize)> = x
-            .funcs
-            .cracks
-            .iter()
-            .enumerate()
-            .flat_map(|(c, crack)| {
-                crack
-                    .tips
-                    .iter()
-                    .enumerate()
-                    .filter_map(move |(k, t)| match t {
-                        TipKind::Junction { main } => Some((c, k, *main)),
-                        _ => None,
-                    })
-            })
-            .collect();
-        assert!(
-            !joined.is_empty(),
-            "{name}: no junction: {:?}",
-            sim.cracks()
-        );
-        for &(c, k, main) in &joined {
-            assert_ne!(c, main, "{name}: crack {c} joined itself");
-            // the wing: the polyline from the flaw's tip k to the junction
-            let poly = &sim.cracks()[c];
-            let flaw = &flaws[c];
-            let wing: Vec<[f64; 2]> = if k == 0 {
-                let i = poly.iter().position(|p| *p == flaw[0]).expect("flaw");
-                poly[..=i].to_vec()
-            } else {
-                let i = poly.iter().position(|p| p == flaw.last().expect("flaw"));
-                poly[i.expect("flaw")..].to_vec()
-            };
-            let l = length(&wing);
-            println!("{name}: crack {c} tip {k} joined crack {main}, wing {l:.4} m");
-            assert!(l >= length(flaw), "{name}: wing {l} shorter than the flaw");
+    for (name, mut scene) in [("bundled", bundled), ("held out", held_out)] {
+        scene.growth.max_steps = 40;
+        let mut sim = Simulation::new(valid(scene)).expect("valid");
+        while sim.growth_finished().is_none() && sim.coalescence().is_none() {
+            let step = sim.grow_step().expect("step");
+            assert!(
+                step.converged,
+                "{name}: step {} did not converge",
+                step.step
+            );
         }
+        let c = sim.coalescence();
+        println!("{name}: {c:?}");
+        assert!(
+            c.is_some(),
+            "{name}: no link in {} steps",
+            sim.history().len()
+        );
     }
 }
 
@@ -572,7 +542,7 @@ fn held_out_overlapping_pair_converges_to_failure() {
     {
         crack.points = Some(vec![[cx - half, cy - half], [cx + half, cy + half]]);
     }
-    let mut sim = Simulation::new(valid(scene)).expect("valid");
+    let mut sim = Simulation::new(valid(wings_only(scene))).expect("valid");
     let mut most = 0;
     while sim.growth_finished().is_none() {
         let step = sim.grow_step().expect("step");
@@ -660,8 +630,13 @@ fn a_scene_saved_mid_growth_grows_the_same_next_steps() {
 /// starts from other states, so not to the bit).
 #[test]
 fn the_end_of_a_run_is_solved_at_the_last_load() {
-    let mut sim =
-        Simulation::new(valid(flaw_scene(40, (0.0151, 0.0148), 0.002, 35.0))).expect("valid");
+    let mut sim = Simulation::new(valid(wings_only(flaw_scene(
+        40,
+        (0.0151, 0.0148),
+        0.002,
+        35.0,
+    ))))
+    .expect("valid");
     assert_eq!(sim.start_final_solve(), None, "growth has not ended");
     while sim.growth_finished().is_none() {
         sim.grow_step().expect("step");
@@ -738,7 +713,7 @@ fn a_scene_saved_after_a_junction_grows_the_same_next_steps() {
 fn contact_iteration_settles_after_stick_slip_cycling() {
     let text = include_str!("../../../assets/scenes/plate_45_biaxial_k0.1_mu0.5.json");
     let scene = Scene::from_json(text).expect("scene").into_file();
-    let mut sim = Simulation::new(valid(scene)).expect("valid");
+    let mut sim = Simulation::new(valid(wings_only(scene))).expect("valid");
     for _ in 0..29 {
         let step = sim.grow_step().expect("step");
         assert!(
@@ -766,15 +741,16 @@ fn contact_iteration_settles_after_stick_slip_cycling() {
 /// frozen, growth stopped `not_converged`). With the friction limits held
 /// fixed in an inner (Tresca) problem and updated in an outer loop, steps
 /// 1–16 converge with every point in its Coulomb state (nothing frozen or
-/// violating), and steps 1–14 find the λ_cr the old iteration found (its
-/// values, to the search's bracket, 1e-3).
+/// violating), and steps 1–9 find the λ_cr the old iteration found (its
+/// values, to the search's bracket, 1e-3). At step 9 a wing runs onto the
+/// other flaw; from then on the two count as one crack system for the
+/// criterion's radius (`system_lengths`), which the old values predate.
 #[test]
 fn stepped_pair_converges_on_the_default_contact() {
     let old = [
-        0.8069, 0.7439, 0.7757, 0.6967, 1.185, 1.1467, 1.6946, 1.6685, 1.5907, 1.6412, 1.587,
-        1.8019, 1.7812, 1.7059,
+        0.8069, 0.7439, 0.7757, 0.6967, 1.185, 1.1467, 1.6946, 1.6685, 1.5907,
     ];
-    let scene = bundled("specimen_two_flaws_stepped");
+    let scene = wings_only(bundled("specimen_two_flaws_stepped"));
     assert!(scene.cracks.iter().all(|c| c.normal_stiffness.is_none()));
     let mut sim = Simulation::new(valid(scene)).expect("valid");
     for k in 0..16 {
@@ -802,7 +778,7 @@ fn stepped_pair_converges_on_the_default_contact() {
 /// flaw lengths and the angle from the vertical of its last flaw length.
 fn grown_flaw(c: (f64, f64), len: f64, deg: f64, mu: f64) -> (Simulation, Vec<(f64, f64)>) {
     let t = deg.to_radians();
-    let mut s = bundled("specimen_single_flaw");
+    let mut s = wings_only(bundled("specimen_single_flaw"));
     let mut crack = centre_crack(c.0, c.1, 0.5 * len, deg);
     crack.friction = mu;
     s.cracks = vec![crack];
@@ -1115,7 +1091,8 @@ fn wing_from_point(c: &[[f64; 2]], p: [f64; 2], k: usize) -> Vec<[f64; 2]> {
 /// faces hold the halves: a fresh solve of the final cracks converges.
 #[test]
 fn growth_ends_when_the_specimen_is_split() {
-    let mut sim = Simulation::new(valid(bundled("specimen_two_flaws_stepped"))).expect("valid");
+    let mut sim =
+        Simulation::new(valid(wings_only(bundled("specimen_two_flaws_stepped")))).expect("valid");
     run(&mut sim);
     assert_eq!(sim.growth_finished(), Some(Outcome::Through));
     assert!(sim.history().iter().all(|st| st.converged));
@@ -1156,7 +1133,7 @@ fn growth_ends_when_the_specimen_is_split() {
 /// ended still opens.
 #[test]
 fn growth_that_cuts_the_specimen_apart_ends_through() {
-    let mut s = bundled("specimen_two_flaws_overlapping");
+    let mut s = wings_only(bundled("specimen_two_flaws_overlapping"));
     s.mesh.nx = 64;
     s.mesh.ny = 64;
     s.growth.max_steps = 45;
@@ -1221,7 +1198,7 @@ fn growth_that_cuts_the_specimen_apart_ends_through() {
 /// face friction; face cohesion, Pa) and the contact cap `max_contact`
 /// (None: the default), grown to its end.
 fn grown_layout(flaws: &[([[f64; 2]; 2], f64, f64)], max_contact: Option<usize>) -> Simulation {
-    let mut s = bundled("specimen_single_flaw");
+    let mut s = wings_only(bundled("specimen_single_flaw"));
     if let Some(cap) = max_contact {
         s.solver.max_contact_iterations = cap;
     }

@@ -10,6 +10,7 @@
 
 pub mod criterion;
 pub mod growth;
+pub mod kinks;
 pub mod rock;
 pub mod sif;
 pub mod tips;

@@ -9,7 +9,7 @@ use crate::fracture::criterion::{
     uniform_stress,
 };
 use crate::fracture::sif::{Sifs, tip_sifs};
-use crate::geometry::cracks::{Crack, TipFrame};
+use crate::geometry::cracks::{Crack, TipFrame, system_lengths};
 use crate::geometry::plane::P2;
 use crate::report::TipReport;
 use crate::scene::Sampling;
@@ -91,9 +91,10 @@ pub fn evaluate_tips(
     let field = Field { xfem: x, u };
     let tractions = face_tractions(x, states);
     let mut out = Evaluation::default();
+    let lengths = system_lengths(&x.funcs.cracks);
     for (c, k, frame, s) in all_tip_sifs(x, u, &tractions) {
         let crack = &x.funcs.cracks[c];
-        let params = &params.for_crack(crack.length());
+        let params = &params.for_crack(lengths[c]);
         let faces = Faces {
             friction: crack.friction,
             cohesion: crack.cohesion,

@@ -246,6 +246,31 @@ fn crossings(cracks: &[Crack]) -> impl Iterator<Item = (usize, usize)> + '_ {
     })
 }
 
+/// Total length of the crack system each crack belongs to, m: cracks
+/// joined at junctions (a crack started at another's kink, a wing that ran
+/// onto another crack) count as one crack, as the polyline of a flaw and
+/// its wings does. How a crack system is split into polylines is a matter
+/// of representation, not of the crack.
+pub fn system_lengths(cracks: &[Crack]) -> Vec<f64> {
+    let mut parent: Vec<usize> = (0..cracks.len()).collect();
+    for (c, crack) in cracks.iter().enumerate() {
+        for tip in crack.tips {
+            if let TipKind::Junction { main } = tip {
+                let (a, b) = (root(&mut parent, c), root(&mut parent, main));
+                parent[a] = b;
+            }
+        }
+    }
+    let mut total = vec![0.0; cracks.len()];
+    for (c, crack) in cracks.iter().enumerate() {
+        let r = root(&mut parent, c);
+        total[r] += crack.length();
+    }
+    (0..cracks.len())
+        .map(|c| total[root(&mut parent, c)])
+        .collect()
+}
+
 /// Root of `i` in a union–find forest (with path halving).
 pub fn root(parent: &mut [usize], mut i: usize) -> usize {
     while parent[i] != i {

@@ -306,6 +306,12 @@ pub struct GrowthSpec {
     /// exceed this factor of the scene's loads.
     #[serde(default = "default_max_load_factor")]
     pub max_load_factor: f64,
+    /// Whether a crack's sharp kinks are sites of the criterion, where
+    /// secondary cracks start (SPEC §8; `fracture::kinks`). `false`: only
+    /// free tips grow, so a flaw grows its wings alone (as before secondary
+    /// cracks existed; for teaching wing cracks, or to compare).
+    #[serde(default = "yes", skip_serializing_if = "is_true")]
+    pub secondary_cracks: bool,
     /// Where a run saved mid-way stands; `None` in a scene not yet grown.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub resume: Option<super::Resume>,
@@ -320,6 +326,7 @@ impl Default for GrowthSpec {
             max_steps: default_max_steps(),
             control: GrowthControl::default(),
             max_load_factor: default_max_load_factor(),
+            secondary_cracks: true,
             resume: None,
         }
     }
@@ -450,6 +457,15 @@ fn default_friction_angle() -> f64 {
 fn default_k_ic() -> f64 {
     1.03e6
 }
+fn yes() -> bool {
+    true
+}
+
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if signature
+fn is_true(b: &bool) -> bool {
+    *b
+}
+
 fn default_k_iic() -> f64 {
     2.52e6
 }

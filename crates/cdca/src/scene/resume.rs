@@ -39,6 +39,97 @@ pub struct Resume {
     /// needs it; never written.
     #[serde(default, skip_serializing)]
     pub grown: Vec<[usize; 2]>,
+    /// Per crack, what its parts are (for the growth report's links; the
+    /// criterion reads none of it). Left out, every crack is a flaw as
+    /// drawn.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub lineage: Vec<Lineage>,
+}
+
+/// What a part of a crack is (Park & Bobet 2009, Wong & Einstein 2009):
+/// the flaw as drawn, a wing (grown from a flaw's end, first in tension),
+/// or a secondary crack (started at a kink, or grown from a flaw's end
+/// first in shear).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Part {
+    #[default]
+    Flaw,
+    Wing,
+    Secondary,
+}
+
+impl Part {
+    /// As serialised: `"flaw"`, `"wing"`, `"secondary"`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Flaw => "flaw",
+            Self::Wing => "wing",
+            Self::Secondary => "secondary",
+        }
+    }
+}
+
+/// What the parts of one crack's polyline are: the drawn polyline (the
+/// flaw), and what grew at each of its ends; or, for a crack started at
+/// another crack's kink, a secondary crack throughout.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Lineage {
+    /// The drawn crack it belongs to (itself when drawn).
+    pub flaw: usize,
+    /// Points grown at its first end, before the drawn polyline.
+    pub front: usize,
+    /// Points of the drawn polyline; 0 for a secondary crack.
+    pub drawn: usize,
+    /// What grew at each end (`flaw`: nothing yet).
+    pub ends: [Part; 2],
+}
+
+impl Lineage {
+    /// Crack `flaw` as drawn, with `points` points.
+    pub fn drawn(flaw: usize, points: usize) -> Self {
+        Self {
+            flaw,
+            front: 0,
+            drawn: points,
+            ends: [Part::Flaw; 2],
+        }
+    }
+
+    /// A secondary crack started on a crack of `flaw`.
+    pub fn secondary(flaw: usize) -> Self {
+        Self {
+            flaw,
+            front: 0,
+            drawn: 0,
+            ends: [Part::Secondary; 2],
+        }
+    }
+
+    /// The part segment `j` (from point `j` to `j + 1`) belongs to.
+    pub fn part_of_segment(&self, j: usize) -> Part {
+        if self.drawn == 0 {
+            Part::Secondary
+        } else if j < self.front {
+            self.ends[0]
+        } else if j + 1 >= self.front + self.drawn {
+            self.ends[1]
+        } else {
+            Part::Flaw
+        }
+    }
+
+    /// Records a growth at end `k`; the first growth at an end names its
+    /// part: a wing when in tension, a secondary crack when in shear.
+    pub fn grew(&mut self, k: usize, shear: bool) {
+        if k == 0 {
+            self.front += 1;
+        }
+        if self.ends[k] == Part::Flaw {
+            self.ends[k] = if shear { Part::Secondary } else { Part::Wing };
+        }
+    }
 }
 
 fn first_increment() -> usize {
@@ -46,9 +137,29 @@ fn first_increment() -> usize {
 }
 
 impl Resume {
-    /// Checks the values (the face count is checked against the
-    /// discretisation when a simulation is built).
-    pub(crate) fn validate(&self) -> Result<(), SceneError> {
+    /// Checks the values against a scene of `cracks` cracks (the face
+    /// count is checked against the discretisation when a simulation is
+    /// built).
+    pub(crate) fn validate(&self, cracks: usize) -> Result<(), SceneError> {
+        if !self.lineage.is_empty() && self.lineage.len() != cracks {
+            return Err(SceneError::invalid(
+                "growth.resume.lineage",
+                format!("{} entries", self.lineage.len()),
+                format!("must have one per crack ({cracks})"),
+            ));
+        }
+        if let Some((i, l)) = self
+            .lineage
+            .iter()
+            .enumerate()
+            .find(|(_, l)| l.flaw >= cracks)
+        {
+            return Err(SceneError::invalid(
+                format!("growth.resume.lineage[{i}].flaw"),
+                l.flaw,
+                format!("must name one of the {cracks} cracks"),
+            ));
+        }
         let lambda = self.load_factor;
         if !lambda.is_finite() || lambda < 0.0 {
             return Err(SceneError::invalid(

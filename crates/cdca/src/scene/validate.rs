@@ -269,7 +269,7 @@ impl SceneFile {
         at_least_one("growth.max_growth_per_step", g.max_growth_per_step)?;
         positive("growth.max_load_factor", g.max_load_factor)?;
         if let Some(r) = &g.resume {
-            r.validate()?;
+            r.validate(self.cracks.len())?;
         }
         let s = &self.solver;
         open_interval("solver.tolerance", s.tolerance, 0.0, 1.0)?;

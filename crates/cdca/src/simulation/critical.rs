@@ -12,10 +12,15 @@ use crate::contact::law::FaceState;
 use crate::report::GrowthStepReport;
 
 impl Simulation {
-    /// Largest utilisation over the free tips of the last solve (0 with no
-    /// free tip).
+    /// Largest utilisation over the free tips and the kinks of the last
+    /// solve (0 with neither).
     pub(super) fn utilisation(&self) -> f64 {
-        self.scratch.utilisation.iter().copied().fold(0.0, f64::max)
+        self.scratch
+            .utilisation
+            .iter()
+            .chain(&self.scratch.kink_utilisation)
+            .copied()
+            .fold(0.0, f64::max)
     }
 
     /// Starts a critical-control step: the first trial at the last step's
@@ -155,6 +160,8 @@ impl Simulation {
             circles: self.scratch.circles.clone(),
             tip_faces: self.scratch.tip_faces.clone(),
             utilisation: self.scratch.utilisation.clone(),
+            kinks: self.scratch.kinks.clone(),
+            kink_utilisation: self.scratch.kink_utilisation.clone(),
             contact: self.scratch.contact.clone(),
             residual: self.scratch.residual.clone(),
         }
@@ -169,6 +176,8 @@ impl Simulation {
         self.scratch.circles = s.circles;
         self.scratch.tip_faces = s.tip_faces;
         self.scratch.utilisation = s.utilisation;
+        self.scratch.kinks = s.kinks;
+        self.scratch.kink_utilisation = s.kink_utilisation;
         self.scratch.contact = s.contact;
         self.scratch.residual = s.residual;
         self.scratch.job = None;

@@ -9,13 +9,14 @@ use super::state::Simulation;
 use crate::contact::law::{FaceState, carry_over, counts};
 use crate::discretisation::xfem::Reuse;
 use crate::error::SolveError;
-use crate::fracture::growth::{apply, default_increment, extend};
-use crate::geometry::cracks::{Crack, TipKind, classify_tips, split_specimen};
-use crate::geometry::plane::P2;
+use crate::fracture::growth::{Extension, apply, default_increment, extend};
+use crate::geometry::cracks::{Crack, TipKind, classify_tips, root, split_specimen};
+use crate::geometry::plane::{P2, distance_to_segment};
 use crate::report::{
-    ContactCounts, GrownTip, GrowthStepReport, LoadCapReport, Mode, Outcome, SolveReport, TipReport,
+    CoalescenceReport, ContactCounts, GrownTip, GrowthStepReport, KinkReport, LinkReport,
+    LoadCapReport, Mode, Outcome, SolveReport, StartedCrack, TipReport,
 };
-use crate::scene::{CrackSpec, GrowthControl, Resume, SolverKind};
+use crate::scene::{CrackSpec, GrowthControl, Lineage, Resume, SolverKind};
 
 /// Quadrature points whose stiffness contributions one
 /// [`Simulation::advance_growth`] call sums after a rebuild: about 4 ms
@@ -177,6 +178,13 @@ impl Simulation {
             .filter(|t| t.criterion.mode != Mode::None)
             .cloned()
             .collect();
+        let starting: Vec<KinkReport> = report
+            .kinks
+            .iter()
+            .filter(|k| k.mode != Mode::None)
+            .cloned()
+            .collect();
+        let nothing = growing.is_empty() && starting.is_empty();
         let mut step = GrowthStepReport {
             step: self.state.steps_before + self.state.history.len() + 1,
             load_factor: self.state.lambda,
@@ -204,16 +212,18 @@ impl Simulation {
             intact_rock: self.intact_rock(),
             unsolved_trials: trials.unsolved.to_vec(),
             cold_trials: trials.cold.to_vec(),
+            kinks: report.kinks.clone(),
+            ..GrowthStepReport::default()
         };
         if !step.converged {
             self.state.outcome = Some(Outcome::NotConverged);
         } else if critical {
-            if growing.is_empty() {
+            if nothing {
                 self.state.outcome = Some(Outcome::Completed);
             } else {
-                step.grown = self.grow_tips(&growing, da);
+                self.grow_tips(&growing, &starting, da, &mut step);
             }
-        } else if growing.is_empty() {
+        } else if nothing {
             self.state.increment += 1;
             self.state.growths_here = 0;
             if self.state.increment > load_steps {
@@ -221,12 +231,13 @@ impl Simulation {
             }
         } else {
             self.state.growths_here += 1;
-            step.grown = self.grow_tips(&growing, da);
+            self.grow_tips(&growing, &starting, da, &mut step);
             if self.state.growths_here >= max_here {
                 self.state.outcome = Some(Outcome::Unstable);
             }
         }
-        if !step.grown.is_empty() && split_specimen(&self.state.cracks) {
+        if !(step.grown.is_empty() && step.started.is_empty()) && split_specimen(&self.state.cracks)
+        {
             // a chain of cracks from boundary to boundary: the specimen
             // has failed, whether or not contact still holds its pieces
             self.state.outcome = Some(Outcome::Through);
@@ -263,38 +274,66 @@ impl Simulation {
             growths_here: self.state.growths_here,
             faces: self.state.faces.iter().map(FaceState::saved).collect(),
             grown: Vec::new(),
+            lineage: self.state.lineage.clone(),
         }
     }
 
-    /// Extends the growing tips (all from the same solution) and rebuilds
-    /// the discretisation, carrying contact states and displacement over.
-    fn grow_tips(&mut self, growing: &[TipReport], da: f64) -> Vec<GrownTip> {
+    /// Extends the growing tips and starts a secondary crack at each kink
+    /// that meets the criterion (all from the same solution), records them
+    /// and the links they make in `step`, and rebuilds the discretisation,
+    /// carrying contact states and displacement over.
+    fn grow_tips(
+        &mut self,
+        growing: &[TipReport],
+        starting: &[KinkReport],
+        da: f64,
+        step: &mut GrowthStepReport,
+    ) {
         let m = &self.model.mesh;
-        let snap = m.h();
-        let mut ext = Vec::new();
-        for t in growing {
-            let e = extend(
-                &self.state.cracks,
-                t.crack,
-                t.tip,
-                t.criterion.angle_deg.to_radians(),
-                da,
-                m.width,
-                m.height,
-                snap,
-            );
-            ext.push((t, e));
-        }
-        let mut grown = Vec::new();
+        let (snap, width, height) = (m.h(), m.width, m.height);
+        let ext: Vec<Extension> = growing
+            .iter()
+            .map(|t| {
+                let angle = t.criterion.angle_deg.to_radians();
+                extend(
+                    &self.state.cracks,
+                    t.crack,
+                    t.tip,
+                    angle,
+                    da,
+                    width,
+                    height,
+                    snap,
+                )
+            })
+            .collect();
+        // each secondary crack as a first segment of Δa from its kink
+        let first = self.state.cracks.len();
+        let branches: Vec<(Crack, Extension)> = starting
+            .iter()
+            .map(|k| {
+                let crack = branch(&self.state.cracks[k.crack], k);
+                let mut all = self.state.cracks.clone();
+                all.push(crack.clone());
+                let e = extend(&all, all.len() - 1, 1, 0.0, da, width, height, snap);
+                (crack, e)
+            })
+            .collect();
         let mut moved = Vec::new();
-        for (t, e) in ext {
+        let mut links = Vec::new();
+        for (t, e) in growing.iter().zip(ext) {
             let p = e.point();
             moved.push(self.state.cracks[t.crack].tip_point(t.tip));
             moved.push(p);
-            if (p - self.state.cracks[t.crack].tip_point(t.tip)).norm() > 1e-6 * m.h() {
+            if (p - self.state.cracks[t.crack].tip_point(t.tip)).norm() > 1e-6 * snap {
                 apply(&mut self.state.cracks[t.crack], t.tip, p);
+                let shear = t.criterion.mode == Mode::Shear;
+                self.state.lineage[t.crack].grew(t.tip, shear);
             }
-            grown.push(GrownTip {
+            if let Extension::Junction(_, main) = e {
+                links.push((t.crack, t.tip, main, p));
+            }
+            step.grown.push(GrownTip {
                 crack: t.crack,
                 tip: t.tip,
                 x: p.x,
@@ -305,9 +344,59 @@ impl Simulation {
                 k2: t.k2,
             });
         }
-        classify_tips(&mut self.state.cracks, m.width, m.height, 1e-9 * m.h());
+        for (i, ((mut crack, e), k)) in branches.into_iter().zip(starting).enumerate() {
+            let (start, p) = (crack.points[1], e.point());
+            crack.points = vec![start, p];
+            moved.extend([start, p]);
+            self.state.cracks.push(crack);
+            let flaw = self.state.lineage[k.crack].flaw;
+            self.state.lineage.push(Lineage::secondary(flaw));
+            if let Extension::Junction(_, main) = e {
+                links.push((first + i, 1, main, p));
+            }
+            step.started.push(StartedCrack {
+                crack: first + i,
+                on: k.crack,
+                vertex: k.vertex,
+                x: start.x,
+                y: start.y,
+                tip_x: p.x,
+                tip_y: p.y,
+                mode: k.mode,
+                direction_deg: k.direction_deg,
+                off_arm_deg: k.off_arm_deg,
+            });
+        }
+        classify_tips(&mut self.state.cracks, width, height, 1e-9 * snap);
+        for (crack, tip, main, p) in links {
+            step.links.push(self.link(crack, tip, main, p));
+        }
         self.rebuild(moved);
-        grown
+    }
+
+    /// What the junction of `crack`'s tip `tip` at `p` on `main` joins, and
+    /// whether it is the first link between the two flaws (coalescence):
+    /// flaws linked by an earlier link of the run, directly or through
+    /// others, do not coalesce again.
+    fn link(&self, crack: usize, tip: usize, main: usize, p: P2) -> LinkReport {
+        let lineage = &self.state.lineage;
+        let segments = self.state.cracks[crack].points.len() - 1;
+        let own = lineage[crack].part_of_segment(if tip == 0 { 0 } else { segments - 1 });
+        let hit = nearest_segment(&self.state.cracks[main], p);
+        let flaws = [lineage[crack].flaw, lineage[main].flaw];
+        let mut parent: Vec<usize> = (0..lineage.len()).collect();
+        for l in self.state.history.iter().flat_map(|s| &s.links) {
+            let (a, b) = (root(&mut parent, l.flaws[0]), root(&mut parent, l.flaws[1]));
+            parent[a] = b;
+        }
+        LinkReport {
+            crack,
+            tip,
+            main,
+            joins: [own, lineage[main].part_of_segment(hit)],
+            flaws,
+            coalescence: root(&mut parent, flaws[0]) != root(&mut parent, flaws[1]),
+        }
     }
 
     /// New discretisation for the current cracks (reusing element data away
@@ -341,15 +430,18 @@ impl Simulation {
         // the next step starts from no displacement (see `Resume`)
         self.state.u = vec![0.0; self.scratch.xfem.n_free()];
         self.state.solved = false;
+        // a secondary crack has the faces of the flaw it belongs to
+        let specs = &self.model.scene.cracks;
         let grown = self
             .state
             .cracks
             .iter()
-            .zip(&self.model.scene.cracks)
-            .map(|(c, spec)| CrackSpec {
+            .zip(&self.state.lineage)
+            .enumerate()
+            .map(|(i, (c, l))| CrackSpec {
                 points: Some(c.points.iter().map(|p| [p.x, p.y]).collect()),
                 arc: None,
-                ..spec.clone()
+                ..specs.get(i).unwrap_or(&specs[l.flaw]).clone()
             })
             .collect();
         self.state.scene.set_grown_cracks(grown);
@@ -392,6 +484,26 @@ impl Simulation {
             .then(|| LoadCapReport::at(self.model.scene.growth.max_load_factor))
     }
 
+    /// The first link between two flaws in this run's history, if any.
+    pub fn coalescence(&self) -> Option<CoalescenceReport> {
+        self.state.history.iter().find_map(|s| {
+            s.links
+                .iter()
+                .find(|l| l.coalescence)
+                .map(|l| CoalescenceReport {
+                    step: s.step,
+                    load_factor: s.load_factor,
+                    category: l.category(),
+                    flaws: l.flaws,
+                })
+        })
+    }
+
+    /// What each crack's parts are (flaw, wing, secondary).
+    pub fn lineage(&self) -> &[Lineage] {
+        &self.state.lineage
+    }
+
     /// Current crack polylines, m.
     pub fn cracks(&self) -> Vec<Vec<[f64; 2]>> {
         self.state
@@ -400,4 +512,27 @@ impl Simulation {
             .map(|c| c.points.iter().map(|p| [p.x, p.y]).collect())
             .collect()
     }
+}
+
+/// A crack about to start at kink `k` of `on`, with the faces of `on`: a
+/// stub that ends at the vertex, pointing along the kink's direction, so
+/// that [`extend`] grows its tip 1 from the vertex (then the stub goes).
+fn branch(on: &Crack, k: &KinkReport) -> Crack {
+    let d = k.direction_deg.to_radians();
+    let start = P2::new(k.x, k.y);
+    Crack {
+        points: vec![start - 1e-3 * P2::new(d.cos(), d.sin()), start],
+        tips: [TipKind::Junction { main: k.crack }, TipKind::Free],
+        ..on.clone()
+    }
+}
+
+/// Index of the segment of `crack` nearest to `p`.
+fn nearest_segment(crack: &Crack, p: P2) -> usize {
+    crack
+        .segments()
+        .map(|(a, b)| distance_to_segment(p, a, b))
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(0, |(j, _)| j)
 }

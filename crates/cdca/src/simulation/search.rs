@@ -26,7 +26,7 @@ use web_time::Instant;
 use crate::contact::law::FaceState;
 use crate::contact::status::ContactInfo;
 use crate::fracture::criterion::{Circle, Faces};
-use crate::report::TipReport;
+use crate::report::{KinkReport, TipReport};
 use crate::solvers::relaxation::ResidualSample;
 
 /// Relative width of the search's final bracket: λ_cr is the lowest trial
@@ -199,6 +199,8 @@ pub(super) struct Snapshot {
     pub(super) circles: Vec<Circle>,
     pub(super) tip_faces: Vec<Faces>,
     pub(super) utilisation: Vec<f64>,
+    pub(super) kinks: Vec<KinkReport>,
+    pub(super) kink_utilisation: Vec<f64>,
     pub(super) contact: ContactInfo,
     pub(super) residual: Vec<ResidualSample>,
 }

@@ -8,6 +8,7 @@ use web_time::Instant;
 use super::state::Simulation;
 use crate::contact::law::{ContactState, FaceState, counts};
 use crate::error::SolveError;
+use crate::fracture::kinks::evaluate_kinks;
 use crate::fracture::rock::{RockStrength, intact_rock};
 use crate::fracture::tips::evaluate_tips;
 use crate::geometry::cracks::{root, split_specimen};
@@ -53,6 +54,18 @@ impl Simulation {
         self.scratch.circles = e.circles;
         self.scratch.tip_faces = e.faces;
         self.scratch.utilisation = e.utilisation;
+        let (kinks, utilisation) = if self.model.scene.growth.secondary_cracks {
+            evaluate_kinks(
+                &self.scratch.xfem,
+                &self.state.u,
+                &self.state.faces,
+                &self.criterion_params(),
+            )
+        } else {
+            (Vec::new(), Vec::new())
+        };
+        self.scratch.kinks = kinks;
+        self.scratch.kink_utilisation = utilisation;
     }
 
     /// The rock away from the cracks against its strength at the solved
@@ -109,6 +122,7 @@ impl Simulation {
             } else {
                 None
             },
+            kinks: self.scratch.kinks.clone(),
         }
     }
 }

@@ -14,8 +14,8 @@ use crate::discretisation::xfem::Xfem;
 use crate::error::{SceneError, SolveError};
 use crate::fracture::criterion::{Circle, CriterionParams, Faces};
 use crate::geometry::cracks::{Crack, TipKind, split_specimen};
-use crate::report::{GrowthStepReport, Outcome, TipReport};
-use crate::scene::{MIN_END_SEGMENT, Scene, SceneFile, SideBc, fmt_point};
+use crate::report::{GrowthStepReport, KinkReport, Outcome, TipReport};
+use crate::scene::{Lineage, MIN_END_SEGMENT, Scene, SceneFile, SideBc, fmt_point};
 use crate::solvers::automaton::AutomatonParams;
 use crate::solvers::linear::LinearSolver;
 use crate::solvers::relaxation::ResidualSample;
@@ -47,6 +47,9 @@ pub(super) struct State {
     pub(super) growths_here: usize,
     /// Growth steps done before this simulation (`growth.resume.steps`).
     pub(super) steps_before: usize,
+    /// What each crack's parts are (flaw, wing, secondary), for the links
+    /// the growth report names.
+    pub(super) lineage: Vec<Lineage>,
 }
 
 /// Derived data, rebuilt from model and state; never serialised.
@@ -66,6 +69,10 @@ pub(super) struct Scratch {
     pub(super) growth_start: Option<Instant>,
     /// Each free tip's utilisation after the last solve (≥ 1: it grows).
     pub(super) utilisation: Vec<f64>,
+    /// Every sharp kink evaluated after the last solve, and each one's
+    /// utilisation (≥ 1: a secondary crack starts there).
+    pub(super) kinks: Vec<KinkReport>,
+    pub(super) kink_utilisation: Vec<f64>,
     /// The critical-control step in progress, if any.
     pub(super) critical: Option<CriticalRun>,
     /// Contact states the next solve's contact iteration starts from (a
@@ -316,6 +323,12 @@ impl Simulation {
             }
             None => vec![FaceState::default(); nf],
         };
+        let lineage = match &resume {
+            Some(r) if r.lineage.len() == cracks.len() => r.lineage.clone(),
+            _ => (0..cracks.len())
+                .map(|i| Lineage::drawn(i, cracks[i].points.len()))
+                .collect(),
+        };
         Ok(Self {
             scratch: Scratch {
                 xfem,
@@ -329,6 +342,8 @@ impl Simulation {
                 job: None,
                 growth_start: None,
                 utilisation: Vec::new(),
+                kinks: Vec::new(),
+                kink_utilisation: Vec::new(),
                 critical: None,
                 contact_guess: None,
                 factored: None,
@@ -346,6 +361,7 @@ impl Simulation {
                 increment: resume.as_ref().map_or(1, |r| r.increment),
                 growths_here: resume.as_ref().map_or(0, |r| r.growths_here),
                 steps_before: resume.as_ref().map_or(0, |r| r.steps),
+                lineage,
             },
             model,
         })

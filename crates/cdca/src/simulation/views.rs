@@ -5,6 +5,7 @@
 use super::state::Simulation;
 use crate::contact::law::ContactState;
 use crate::discretisation::field::Field;
+use crate::geometry::cracks::system_lengths;
 use crate::geometry::plane::P2;
 use crate::report::TipReport;
 
@@ -147,9 +148,8 @@ impl Simulation {
             .get(index)
             .filter(|c| !c.theta.is_empty())?;
         let tip = self.scratch.tips.get(index)?;
-        let p = self
-            .criterion_params()
-            .for_crack(self.scratch.xfem.funcs.cracks.get(tip.crack)?.length());
+        let lengths = system_lengths(&self.scratch.xfem.funcs.cracks);
+        let p = self.criterion_params().for_crack(*lengths.get(tip.crack)?);
         let faces = *self.scratch.tip_faces.get(index)?;
         Some(CriterionCurve {
             theta_deg: c.theta.iter().map(|t| t.to_degrees()).collect(),

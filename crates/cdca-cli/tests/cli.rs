@@ -429,8 +429,9 @@ fn grow_prints_the_history_and_writes_matching_csv() {
     assert!(history.starts_with(&format!("{}\n", cdca::csv::GROWTH_HISTORY_HEADER)));
     // the rock away from the flaw carries about the far field, λ·100 MPa,
     // against σ_c = 2c cos φ/(1 − sin φ) = 80.24 MPa (c = 15 MPa, φ = 49°):
-    // the median 1.2% above it at the first step, and up to 7.8% above as
-    // the wings take area from the load path (never below); stderr names
+    // the median 1.2% above it at the first step, and up to 10.2% above as
+    // the wings and secondary cracks take area from the load path (7.8%
+    // with wings alone; never below); stderr names
     // the step where it passes 1
     for (k, s) in steps.iter().enumerate() {
         let lambda = s["load_factor"].as_f64().expect("λ");
@@ -438,7 +439,7 @@ fn grow_prints_the_history_and_writes_matching_csv() {
             .as_f64()
             .expect("utilisation");
         let excess = u / (lambda * 100e6 / 80.2386e6) - 1.0;
-        let limit = if k == 0 { 0.02 } else { 0.10 };
+        let limit = if k == 0 { 0.02 } else { 0.12 };
         assert!(
             (-0.005..limit).contains(&excess),
             "step {}: u {u}, {excess:.4} above the far field",

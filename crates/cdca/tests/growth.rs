@@ -438,10 +438,10 @@ fn flaw_pair(centre: (f64, f64), offset: [f64; 2]) -> SceneFile {
 
 /// Grows `scene` (at most 30 steps) until a junction forms or growth ends,
 /// asserting that every step converged.
-fn grow_until_junction(name: &str, mut scene: SceneFile) -> Simulation {
+fn grow_until_linked(name: &str, mut scene: SceneFile) -> Simulation {
     scene.growth.max_steps = 30;
     let mut sim = Simulation::new(valid(scene)).expect("valid");
-    while sim.growth_finished().is_none() && junctions(&sim) == 0 {
+    while sim.growth_finished().is_none() && sim.coalescence().is_none() {
         let step = sim.grow_step().expect("step");
         assert!(
             step.converged,
@@ -449,15 +449,20 @@ fn grow_until_junction(name: &str, mut scene: SceneFile) -> Simulation {
             step.step
         );
     }
-    println!("{name}: junction after {} steps", sim.history().len());
+    println!(
+        "{name}: {:?} after {} steps",
+        sim.coalescence(),
+        sim.history().len()
+    );
     sim
 }
 
 /// Coalescence under the product's defaults (critical control, default
 /// criterion): in the bundled stepped flaw pair, and in a held-out stepped
 /// pair (two 3.4 mm flaws at 50°, the upper one 1.2 mm to the right and
-/// 4.6 mm above, off the grid), a wing grown from one flaw reaches the
-/// other flaw's crack and ends on it as a junction, every step converged.
+/// 4.6 mm above, off the grid), a crack grown from one flaw ends on the
+/// other flaw's cracks (the first link between the two, `coalescence`),
+/// every step converged.
 #[test]
 fn stepped_flaws_coalesce() {
     let text = include_str!("../../../assets/scenes/specimen_two_flaws_stepped.json");
@@ -465,21 +470,19 @@ fn stepped_flaws_coalesce() {
     let held_out = flaw_pair((0.01437, 0.01281), [0.0012, 0.0046]);
     let mut at = Vec::new();
     for (name, scene) in [("bundled", bundled), ("held out", held_out)] {
-        let sim = grow_until_junction(name, scene);
-        assert!(
-            junctions(&sim) >= 1,
-            "{name}: no junction formed: {:?}",
-            sim.cracks()
-        );
-        at.push(format!("step {}", sim.history().len()));
+        let sim = grow_until_linked(name, scene);
+        let c = sim
+            .coalescence()
+            .unwrap_or_else(|| panic!("{name}: no link: {:?}", sim.cracks()));
+        at.push(format!("step {} ({})", c.step, c.category));
     }
     verification_row(
         "growth",
         "stepped_flaws_coalesce",
         "stepped flaw pairs link (bundled, and held out: 3.4 mm at 50°, 1.2 mm right and 4.6 mm up), product defaults",
         "100 × 100",
-        &format!("junction at {}, every step converged", at.join(" / ")),
-        "a junction forms",
+        &format!("first link at {}, every step converged", at.join(" / ")),
+        "the flaws link",
     );
 }
 

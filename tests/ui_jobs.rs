@@ -1,6 +1,7 @@
 //! UI tests (egui_kittest) of issue 37: the same scene gives the same
-//! answer whatever ran before, one job runs at a time, and every stop is
-//! explained. They drive the solver: run them with `--release`.
+//! answer whatever ran before, one job runs at a time, every stop is
+//! explained, and what is shown agrees with what is printed. They drive
+//! the solver: run them with `--release`.
 
 use cdca_workbench::app::Message;
 use cdca_workbench::job::Job;
@@ -539,4 +540,70 @@ fn solve_to_end(h: &mut Harness<'_, WorkbenchApp>) {
     h.run_steps(2);
     run_until_paused(h, 5000);
     h.run_steps(2);
+}
+
+/// Clicks `button` (Grow one step, Run growth) and waits for the run to end.
+fn grow(h: &mut Harness<'_, WorkbenchApp>, button: &str) {
+    h.get_by_label(button).click();
+    h.run_steps(2);
+    run_until_paused(h, 20_000);
+    h.run_steps(2);
+}
+
+/// The largest x of a plot's CSV (`series,x,y` rows under a header).
+fn last_x(csv: &str) -> f64 {
+    csv.lines()
+        .skip(1)
+        .filter_map(|row| row.rsplit(',').nth(1)?.parse::<f64>().ok())
+        .fold(f64::NAN, f64::max)
+}
+
+/// A reopened mid-growth run counts its steps as its plots place them. A
+/// scene saved after two growth steps (`growth.resume.steps` = 2) and
+/// reopened used to say "Growth steps 1" after Grow one step, while its
+/// Angles plot put that step at x = 3: the reports number steps on from
+/// the resumed run's (`steps_before`), the status counted this
+/// simulation's. Now the status says 2 on opening (with the plots saying
+/// that they start after step 2) and 3 after the step, the x of the
+/// Angles plot's last point (every step of the default scene extends a
+/// tip, so step 3 has an angle).
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn a_reopened_run_counts_its_steps_as_its_plots_place_them() {
+    use cdca_workbench::PlotTab;
+    use cdca_workbench::command::{Export, PlotFormat};
+    let mut h = solved_default();
+    grow(&mut h, "Grow one step");
+    grow(&mut h, "Grow one step");
+    assert_eq!(h.state().growth_steps(), 2);
+    let saved = h.state().scene_file().expect("the scene saves");
+
+    let mut reopened = harness(Options::default());
+    reopened.run_steps(3);
+    reopened.state_mut().push(Command::OpenSceneText {
+        source: "saved.json".to_owned(),
+        text: saved,
+    });
+    reopened.run_steps(1);
+    run_until_paused(&mut reopened, 2000);
+    reopened.get_by_label("Angles").click();
+    reopened.run_steps(2);
+    assert_eq!(reopened.state().growth_steps(), 2, "the saved run's steps");
+    reopened.get_by_label_contains("This run resumes after growth step 2");
+    grow(&mut reopened, "Grow one step");
+    let app = reopened.state();
+    assert!(app.message().is_none(), "{:?}", app.message());
+    assert_eq!(app.growth_history().len(), 1, "one step in this simulation");
+    assert_eq!(app.growth_steps(), 3, "the status counts the saved steps");
+    let angles = app
+        .table_csv(Export::Plot {
+            tab: PlotTab::Angles,
+            index: 0,
+            format: PlotFormat::Csv,
+        })
+        .expect("the Angles plot has points");
+    assert_eq!(last_x(&angles), 3.0, "the plot's last step: {angles}");
 }

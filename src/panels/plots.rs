@@ -17,6 +17,7 @@ use crate::compare::Race;
 use crate::figure::{Figure, Style, YTicks, tick_label, tick_step};
 use crate::figures::figures;
 use crate::plot_tab::PlotTab;
+use crate::solution::SolutionView;
 use crate::study::{SUGGESTED_PATHS, Study, StudySetup, param_unit};
 use crate::units;
 use crate::view::AppView;
@@ -64,19 +65,25 @@ pub fn plots_ui(
         _ => match figs.first() {
             Some(fig) => figure_ui(ui, tab, 0, fig, cmds),
             None => {
-                ui.weak(empty_hint(tab, v.solution.history.len()));
+                ui.weak(empty_hint(tab, v.solution));
             }
         },
     }
 }
 
-/// What an empty plot says: how to fill it, or, after `steps` growth steps
-/// in which no tip grew (a load ramp below every tip's criterion), that.
-fn empty_hint(tab: PlotTab, steps: usize) -> String {
+/// What an empty plot says: how to fill it; after growth steps in which no
+/// tip grew (a load ramp below every tip's criterion), that; on a reopened
+/// run before its next step, that its earlier steps are not plotted.
+fn empty_hint(tab: PlotTab, view: &SolutionView) -> String {
+    let steps = view.history.len();
     match tab {
         PlotTab::ResidualBySweep | PlotTab::ResidualByTime => {
             "No residual history: the direct solver solves in one step. Choose an iterative solver and press Step or Relax.".to_owned()
         }
+        _ if steps == 0 && view.steps_done > 0 => format!(
+            "This run resumes after growth step {}: the plots show the steps grown from here on (press Grow one step or Run growth).",
+            view.steps_done
+        ),
         _ if steps > 0 => format!(
             "No tip has grown in {steps} growth step{}: every tip stayed below its criterion (the tip inspector shows how far).",
             if steps == 1 { "" } else { "s" }

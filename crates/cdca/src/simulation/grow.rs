@@ -178,7 +178,7 @@ impl Simulation {
             .cloned()
             .collect();
         let mut step = GrowthStepReport {
-            step: self.state.steps_before + self.state.history.len() + 1,
+            step: self.steps_done() + 1,
             load_factor: self.state.lambda,
             grown: Vec::new(),
             contact: ContactCounts {
@@ -374,9 +374,17 @@ impl Simulation {
         Some(lambda)
     }
 
-    /// Growth history so far.
+    /// Growth history so far: the steps of this simulation (a scene that
+    /// resumes a run, `growth.resume`, starts with none).
     pub fn history(&self) -> &[GrowthStepReport] {
         &self.state.history
+    }
+
+    /// Growth steps done, those of the run this scene resumes included
+    /// (`growth.resume.steps` + [`history`](Self::history)): the `step`
+    /// number of the last report, 0 before any.
+    pub fn steps_done(&self) -> usize {
+        self.state.steps_before + self.state.history.len()
     }
 
     /// Whether growth has ended (through, unstable, max steps, completed).

@@ -607,3 +607,28 @@ fn a_reopened_run_counts_its_steps_as_its_plots_place_them() {
         .expect("the Angles plot has points");
     assert_eq!(last_x(&angles), 3.0, "the plot's last step: {angles}");
 }
+
+/// The tip inspector's polar plot fits the window: at 1400 × 900 on the
+/// default scene, solved, with its most loaded tip inspected (as it opens),
+/// the plot ran past the window's bottom edge. Now it is a square sized
+/// to the room left in the panel, inside the window, and no smaller than
+/// 160 px (the panel scrolls below that).
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn the_tip_inspectors_polar_plot_fits_the_window() {
+    let h = solved_default();
+    assert!(
+        h.state().inspected_tip().is_some_and(|(_, curve)| curve),
+        "a tip inspected with its curve"
+    );
+    let rect = h.get_by_label("Polar plot of σ_θθ and |τ_rθ| on r0").rect();
+    let window = egui::Rect::from_min_size(egui::Pos2::ZERO, SIZE.into());
+    assert!(window.contains_rect(rect), "{rect:?} outside {window:?}");
+    assert!(
+        (rect.width() - rect.height()).abs() < 1.0 && rect.width() >= 160.0,
+        "a square of at least 160 px: {rect:?}"
+    );
+}

@@ -632,3 +632,124 @@ fn the_tip_inspectors_polar_plot_fits_the_window() {
         "a square of at least 160 px: {rect:?}"
     );
 }
+
+/// A split under load control shows the field at the load it prints. The
+/// edge crack of `EDGE_CRACK` under load control (10 load steps) grows
+/// nothing at λ = 0.1, then twice at λ = 0.2, the second growth cutting
+/// the specimen through (as `cdca grow` records it); the final cracks'
+/// solve finds it split, and the canvas keeps the last solved field. That
+/// field used to be whichever the canvas had last sampled (at most every
+/// 0.15 s while growth ran: the opened scene's solve at λ = 1, or an
+/// earlier increment's), while the status printed λ = 0.2. Now each
+/// step's solve is shown before its tips move, under load control as
+/// under critical control (the fields shown during the run are at λ =
+/// 0.1, 0.2, 0.2 in turn), so the field kept is the last step's solve at
+/// λ = 0.2: its stresses are those of the same state grown headless (1e-9
+/// relative to the largest: the same direct solves).
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn a_split_under_load_control_shows_the_field_of_the_printed_load() {
+    let mut file = cdca::Scene::from_json(EDGE_CRACK)
+        .expect("valid scene")
+        .into_file();
+    file.growth.control = cdca::scene::GrowthControl::Load;
+    let json = file.to_json().expect("JSON");
+    let mut h = harness(Options::default());
+    h.run_steps(3);
+    h.state_mut().push(Command::OpenSceneText {
+        source: "split_load.json".to_owned(),
+        text: json.clone(),
+    });
+    h.run_steps(3);
+    run_until_paused(&mut h, 2000);
+    h.run_steps(1);
+    // the λ of each field the canvas shows while the run goes on
+    let mut shown: Vec<(u64, f64)> = Vec::new();
+    h.get_by_label("Run growth").click();
+    let mut started = false;
+    for _ in 0..20_000 {
+        h.step();
+        let app = h.state();
+        started |= app.run_mode() == RunMode::Growing;
+        if let (Some((version, _)), Some(lambda)) =
+            (app.shown_field(), app.shown_field_load_factor())
+            && shown.last().is_none_or(|s| s.0 != version)
+        {
+            shown.push((version, lambda));
+        }
+        if started && app.run_mode() == RunMode::Paused {
+            break;
+        }
+    }
+    h.run_steps(2);
+    let app = h.state();
+    assert!(app.message().is_none(), "{:?}", app.message());
+    assert_eq!(app.run_mode(), RunMode::Paused, "the run ends");
+    assert_eq!(app.growth_outcome(), Some(cdca::report::Outcome::Through));
+    assert!(app.specimen_split() && !app.is_solved());
+    let loads: Vec<f64> = app.growth_history().iter().map(|s| s.load_factor).collect();
+    assert_eq!(loads, [0.1, 0.2, 0.2], "the steps `cdca grow` records");
+    // every step's solve was shown, in order (a step's state may be shown
+    // more than once, under a newer version)
+    let mut steps = loads.iter().peekable();
+    for (_, lambda) in &shown {
+        if steps.peek() == Some(&lambda) {
+            steps.next();
+        }
+    }
+    assert_eq!(steps.next(), None, "every step's field shown: {shown:?}");
+    assert_eq!(app.load_factor(), 0.2, "the λ printed");
+    assert_eq!(app.shown_field_load_factor(), Some(0.2), "the field's λ");
+    h.get_by_label("0.200");
+    h.get_by_label_contains("The field shown is the last solved state, at λ = 0.200.");
+
+    // the same state headless: two steps, then the third step's solve
+    let scene = cdca::Scene::from_json(&json).expect("valid scene");
+    let mut headless = cdca::Simulation::new(scene).expect("valid scene");
+    headless.grow_step().expect("step 1");
+    headless.grow_step().expect("step 2");
+    for _ in 0..10_000 {
+        if headless.at_step_load() {
+            break;
+        }
+        assert!(
+            headless
+                .advance_growth(usize::MAX)
+                .expect("step 3")
+                .is_none()
+        );
+    }
+    assert!(headless.at_step_load() && headless.load_factor() == 0.2);
+    let scene = app.scene();
+    let (nx, ny) = (scene.mesh.nx, scene.mesh.ny);
+    let stresses = app.shown_stresses();
+    let k = ((stresses.len() / (nx * ny)) as f64).sqrt() as usize;
+    assert_eq!(stresses.len(), nx * ny * k * k, "a complete field");
+    let (cols, rows) = (nx * k, ny * k);
+    let (dx, dy) = (
+        scene.specimen.width / cols as f64,
+        scene.specimen.height / rows as f64,
+    );
+    let scale = stresses
+        .iter()
+        .flatten()
+        .filter(|v| v.is_finite())
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut compared = 0;
+    for (i, s) in stresses.iter().enumerate().step_by(7) {
+        let p = [
+            ((i % cols) as f64 + 0.5) * dx,
+            ((i / cols) as f64 + 0.5) * dy,
+        ];
+        if let Some(t) = headless.stress_at(p) {
+            for (a, b) in s.iter().zip(t) {
+                assert!((a - b).abs() <= 1e-9 * scale, "at {p:?}: {s:?} vs {t:?}");
+            }
+            compared += 1;
+        }
+    }
+    assert!(scale > 0.0 && compared > 50, "{compared} samples compared");
+}

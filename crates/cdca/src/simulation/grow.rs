@@ -387,6 +387,20 @@ impl Simulation {
         self.state.steps_before + self.state.history.len()
     }
 
+    /// Whether the step in progress has solved at the load it records and
+    /// its tips have not moved yet: under critical control the solve at
+    /// λ_cr ([`at_critical_load`](Self::at_critical_load)), under load
+    /// control the solve at the increment's load factor. The state can be
+    /// shown; the next [`advance_growth`](Self::advance_growth) call
+    /// decides and extends the tips.
+    pub fn at_step_load(&self) -> bool {
+        if self.critical_control() {
+            self.at_critical_load()
+        } else {
+            self.scratch.growth_start.is_some() && self.state.solved && self.scratch.job.is_none()
+        }
+    }
+
     /// Whether growth has ended (through, unstable, max steps, completed).
     pub fn growth_finished(&self) -> Option<Outcome> {
         self.state.outcome

@@ -14,7 +14,7 @@ use egui_plot::{
 
 use crate::command::{Command, Export, PlotFormat};
 use crate::compare::Race;
-use crate::figure::{Figure, Style, YTicks, tick_label, tick_step};
+use crate::figure::{Figure, NOTE_MARKS, Style, YTicks, tick_label, tick_step};
 use crate::figures::figures;
 use crate::plot_tab::PlotTab;
 use crate::solution::SolutionView;
@@ -202,15 +202,31 @@ fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut V
             plot.vline(VLine::new(name, *x).color(*colour));
         }
         // numbered marks on the plot, their words below it: notes at
-        // nearby points used to run into each other
-        for (i, n) in fig.notes.iter().enumerate() {
+        // nearby points used to run into each other; a mark in the right
+        // fifth of the data points at it from the left, so that it is not
+        // cut off at the plot's edge
+        let xs = || fig.series.iter().flat_map(|s| &s.points).map(|p| p[0]);
+        let x_lo = xs().fold(f64::INFINITY, f64::min);
+        let x_hi = xs().fold(f64::NEG_INFINITY, f64::max);
+        for (at, numbers) in fig.note_marks() {
+            let (text, anchor) = if at[0] > x_lo + 0.8 * (x_hi - x_lo) {
+                (
+                    format!("{numbers} {}", NOTE_MARKS[1]),
+                    egui::Align2::RIGHT_CENTER,
+                )
+            } else {
+                (
+                    format!("{} {numbers}", NOTE_MARKS[0]),
+                    egui::Align2::LEFT_CENTER,
+                )
+            };
             plot.text(
                 Text::new(
                     "note",
-                    PlotPoint::new(n.at[0], n.at[1]),
-                    RichText::new(format!("◀ {}", i + 1)).small().strong(),
+                    PlotPoint::new(at[0], at[1]),
+                    RichText::new(text).small().strong(),
                 )
-                .anchor(egui::Align2::LEFT_CENTER),
+                .anchor(anchor),
             );
         }
     });

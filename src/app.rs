@@ -281,8 +281,11 @@ impl WorkbenchApp {
     pub fn growth_outcome(&self) -> Option<cdca::report::Outcome> {
         self.runner.view().outcome
     }
+    /// Growth steps done, as the status prints them: a reopened run's
+    /// earlier steps (`growth.resume.steps`) included, so that the last
+    /// step is the growth plots' last x.
     pub fn growth_steps(&self) -> usize {
-        self.runner.view().history.len()
+        self.runner.view().steps_done
     }
     pub fn is_solved(&self) -> bool {
         self.runner.view().solved

@@ -6,6 +6,7 @@ use cdca::scene::SceneFile;
 use crate::app::WorkbenchApp;
 use crate::command::{Command, Export, PlotFormat};
 use crate::compare::Race;
+use crate::figure::Figure;
 use crate::job::{Job, Waiting};
 use crate::path_prompt::{PathPrompt, PromptAction};
 use crate::plot_tab::PlotTab;
@@ -374,13 +375,30 @@ impl WorkbenchApp {
 
     /// The CSV text File ▸ Export writes for a table (crack paths, growth
     /// history), the same as `cdca grow --csv` writes for the same run
-    /// (`cdca::csv`); `None` for the exports that are not such a table.
+    /// (`cdca::csv`), or a plot's *CSV…* button writes (the points the plot
+    /// draws); `None` for the other exports and for an empty plot.
     pub fn table_csv(&self, what: Export) -> Option<String> {
         match what {
             Export::CrackPaths => Some(self.crack_paths_csv()),
             Export::History => Some(self.history_csv()),
+            Export::Plot {
+                tab,
+                index,
+                format: PlotFormat::Csv,
+            } => self.plot_figures(tab).get(index).map(Figure::to_csv),
             _ => None,
         }
+    }
+
+    /// The figures of a plot tab, as the plot panel draws them.
+    fn plot_figures(&self, tab: PlotTab) -> Vec<Figure> {
+        crate::figures::figures(
+            tab,
+            self.runner.view(),
+            self.race.as_ref(),
+            self.study.as_ref(),
+            [self.scene.specimen.width, self.scene.specimen.height],
+        )
     }
 
     /// The crack paths: the simulation's cracks, or the scene's before a
@@ -458,30 +476,21 @@ impl WorkbenchApp {
                     study.to_csv().as_bytes(),
                 ),
             },
-            Export::Plot { tab, index, format } => {
-                let figures = crate::figures::figures(
-                    tab,
-                    self.runner.view(),
-                    self.race.as_ref(),
-                    self.study.as_ref(),
-                    [self.scene.specimen.width, self.scene.specimen.height],
-                );
-                match figures.get(index) {
-                    None => Err("nothing to export: the plot is empty".to_owned()),
-                    Some(fig) => match format {
-                        PlotFormat::Csv => file(
-                            &format!("{stem}_{}.csv", fig.id),
-                            ("CSV", "csv"),
-                            fig.to_csv().as_bytes(),
-                        ),
-                        PlotFormat::Svg => file(
-                            &format!("{stem}_{}.svg", fig.id),
-                            ("SVG picture", "svg"),
-                            fig.to_svg(900.0, 500.0).as_bytes(),
-                        ),
-                    },
-                }
-            }
+            Export::Plot { tab, index, format } => match self.plot_figures(tab).get(index) {
+                None => Err("nothing to export: the plot is empty".to_owned()),
+                Some(fig) => match format {
+                    PlotFormat::Csv => file(
+                        &format!("{stem}_{}.csv", fig.id),
+                        ("CSV", "csv"),
+                        fig.to_csv().as_bytes(),
+                    ),
+                    PlotFormat::Svg => file(
+                        &format!("{stem}_{}.svg", fig.id),
+                        ("SVG picture", "svg"),
+                        fig.to_svg(900.0, 500.0).as_bytes(),
+                    ),
+                },
+            },
             Export::CanvasPng => {
                 self.request_canvas_png(ctx);
                 return;

@@ -78,6 +78,11 @@ pub struct Figure {
 /// Where a series' name is cut in a compact legend.
 pub const COMPACT_CUT: &str = " — ";
 
+/// The marks beside a noted point, pointing at it from its right and from
+/// its left, with the notes' numbers: glyphs egui's default font has (its
+/// "◀" was drawn as a missing-glyph box).
+pub const NOTE_MARKS: [&str; 2] = ["‹", "›"];
+
 /// Smallest tick step of `kind` that is at least `min_step`.
 pub fn tick_step(kind: YTicks, min_step: f64) -> f64 {
     if !(min_step.is_finite() && min_step > 0.0) {
@@ -116,7 +121,15 @@ pub fn tick_label(kind: YTicks, value: f64, step: f64) -> String {
         YTicks::Log => format!("1e{}", value.round()),
         YTicks::Degrees => format!("{value:.0}°"),
         YTicks::Decimal => {
-            let digits = (-step.log10().floor()).max(0.0) as usize;
+            // the decimals that write the step itself: the step's magnitude
+            // alone gave 2.5 (the major step of a 0.5 grid) none, and the
+            // ticks at 2.5 and 7.5 read "2" and "8"
+            let digits = (0..=12)
+                .find(|&d| {
+                    let scaled = step.abs() * 10f64.powi(d);
+                    (scaled - scaled.round()).abs() <= 1e-6 * scaled.max(1.0)
+                })
+                .unwrap_or(12) as usize;
             let v = if value.abs() < 0.5 * step { 0.0 } else { value };
             format!("{v:.digits$}")
         }
@@ -138,6 +151,23 @@ impl Figure {
                         .any(|t| t.name == s.name || (self.compact_legend && t.colour == s.colour))
             })
             .map(|(_, s)| s)
+    }
+
+    /// The notes' numbered marks, one per noted point in the order of its
+    /// first note: the point and its notes' numbers (from 1), so that two
+    /// notes on one point share a mark ("2, 3") instead of drawing their
+    /// numbers over each other.
+    pub fn note_marks(&self) -> Vec<([f64; 2], String)> {
+        let mut marks: Vec<([f64; 2], String)> = Vec::new();
+        for (i, n) in self.notes.iter().enumerate() {
+            match marks.iter_mut().find(|(at, _)| *at == n.at) {
+                Some((_, numbers)) => {
+                    let _ = write!(numbers, ", {}", i + 1);
+                }
+                None => marks.push((n.at, (i + 1).to_string())),
+            }
+        }
+        marks
     }
 
     /// A series' name in the legend (cut short in a compact legend).
@@ -284,9 +314,10 @@ impl Figure {
         for n in &self.notes {
             let _ = writeln!(
                 svg,
-                "<text x=\"{:.1}\" y=\"{:.1}\" fill=\"#a00\">◀ {}</text>",
+                "<text x=\"{:.1}\" y=\"{:.1}\" fill=\"#a00\">{} {}</text>",
                 sx(n.at[0]) + 6.0,
                 sy(n.at[1]) + 4.0,
+                NOTE_MARKS[0],
                 escape(&n.text)
             );
         }
@@ -358,6 +389,14 @@ mod tests {
             vec![0.0, 15.0, 30.0, 45.0, 60.0, 75.0]
         );
         assert_eq!(tick_label(YTicks::Decimal, 0.30000000000000004, 0.1), "0.3");
+        // a 0.5 grid's major ticks, every 2.5: egui_plot hands each tick
+        // the largest step it lies on (2.5 and 7.5 used to read "2", "8")
+        assert_eq!(tick_label(YTicks::Decimal, 2.5, 2.5), "2.5");
+        assert_eq!(tick_label(YTicks::Decimal, 7.5, 2.5), "7.5");
+        assert_eq!(tick_label(YTicks::Decimal, 5.0, 2.5), "5.0");
+        assert_eq!(tick_label(YTicks::Decimal, 0.75, 0.25), "0.75");
+        assert_eq!(tick_label(YTicks::Decimal, 4.0, 2.0), "4");
+        assert_eq!(tick_label(YTicks::Decimal, 3000.0, 500.0), "3000");
         assert_eq!(tick_label(YTicks::Log, -6.0, 1.0), "1e-6");
         assert_eq!(tick_label(YTicks::Degrees, 75.0, 15.0), "75°");
     }

@@ -208,7 +208,7 @@ fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure>
             .map(|pair| Note {
                 at: point(&pair[1]),
                 text: format!(
-                    "{} → {} free tips: a wing left the specimen or met a crack",
+                    "{} to {} free tips: a wing left the specimen or met a crack",
                     pair[0].tips.len(),
                     pair[1].tips.len()
                 ),
@@ -400,7 +400,9 @@ fn study_figures(study: &Study) -> Vec<Figure> {
         Figure {
             id: "study_load".to_owned(),
             x_label,
-            y_label: "critical load factor λ_cr [–]".to_owned(),
+            // short enough for the plot's height at the default panel
+            // size: "critical load factor λ_cr [–]" ran into the legend
+            y_label: "load factor λ_cr [–]".to_owned(),
             series: load_series,
             include_y: vec![0.0],
             ..Figure::default()
@@ -412,6 +414,7 @@ fn study_figures(study: &Study) -> Vec<Figure> {
 mod tests {
     use super::*;
     use cdca::report::{GrownTip, GrowthStepReport, TipReport};
+    use egui_plot::PlotPoint;
 
     /// The specimen: 30 mm square.
     const SIZE: [f64; 2] = [0.03, 0.03];
@@ -485,7 +488,7 @@ mod tests {
             "λ = 3.400: a wing ran to the specimen's edge"
         );
         assert!(
-            load.notes[1].text.starts_with("2 → 1 free tips"),
+            load.notes[1].text.starts_with("2 to 1 free tips"),
             "{}",
             load.notes[1].text
         );
@@ -538,5 +541,84 @@ mod tests {
             assert!((p[1] - want).abs() < 1e-12, "λ = {} against {want}", p[1]);
         }
         assert_eq!(rock.points.len(), 3);
+    }
+
+    /// Every text the plots draw is in egui's default fonts (Ubuntu Light
+    /// and egui's icons; the emoji fonts are no longer built in): the
+    /// load-factor plot's note marks "◀" and its note "2 → 1 free tips"
+    /// were drawn with missing-glyph boxes. Checked on every growth plot
+    /// with all its notes (an edge, a lost tip, the load cap), the residual
+    /// plots and the race. The notes on one point share one numbered mark:
+    /// their numbers were drawn over each other.
+    #[test]
+    fn every_plot_text_is_in_the_default_fonts() {
+        let mut history = vec![
+            step(1, 0.2, 2, 70.5),
+            step(2, 0.3, 2, 12.0),
+            step(3, 3.4, 1, -4.0),
+            step(4, 100.0, 1, 0.0),
+        ];
+        history[3].grown.clear();
+        for s in &mut history {
+            s.intact_rock = Some(cdca::report::IntactRockReport {
+                utilisation: 0.5,
+                failed_fraction: 0.0,
+                ucs: 80e6,
+            });
+        }
+        let view = SolutionView {
+            history,
+            load_cap: Some(cdca::report::LoadCapReport::at(100.0)),
+            residual_by_sweep: vec![PlotPoint::new(1.0, -3.0)],
+            residual_by_time: vec![PlotPoint::new(0.1, -3.0)],
+            ..SolutionView::default()
+        };
+        let scene = cdca::Scene::try_from(crate::scenes::default_scene()).expect("valid");
+        let race = Race::new(&scene, 1.0);
+        let mut texts: Vec<String> = crate::figure::NOTE_MARKS.map(str::to_owned).into();
+        for tab in [
+            PlotTab::ResidualBySweep,
+            PlotTab::ResidualByTime,
+            PlotTab::Sifs,
+            PlotTab::Angles,
+            PlotTab::LoadFactor,
+            PlotTab::SolverComparison,
+        ] {
+            let figs = figures(tab, &view, Some(&race), None, SIZE);
+            assert_eq!(figs.len(), 1, "{tab:?} has its plot");
+            for fig in &figs {
+                texts.extend([fig.x_label.clone(), fig.y_label.clone()]);
+                texts.extend(fig.legend().map(|s| fig.legend_name(s).to_owned()));
+                texts.extend(fig.vlines.iter().map(|v| v.0.clone()));
+                texts.extend(fig.notes.iter().map(|n| n.text.clone()));
+            }
+        }
+        let load = &figures(PlotTab::LoadFactor, &view, None, None, SIZE)[0];
+        assert_eq!(
+            load.notes.len(),
+            3,
+            "edge, lost tip and cap: {:?}",
+            load.notes
+        );
+        // step 3 ran to the edge, lost a tip and was the last growth: its
+        // three notes share one mark
+        assert_eq!(
+            load.note_marks(),
+            vec![([5.5, 3.4], "1, 2, 3".to_owned())],
+            "{:?}",
+            load.notes
+        );
+
+        let ctx = egui::Context::default();
+        let _ = ctx.run_ui(egui::RawInput::default(), |_| {});
+        let font = egui::FontId::proportional(12.0);
+        let missing: Vec<char> = ctx.fonts_mut(|f| {
+            texts
+                .iter()
+                .flat_map(|t| t.chars())
+                .filter(|&c| !f.has_glyph(&font, c))
+                .collect()
+        });
+        assert!(missing.is_empty(), "no glyph for {missing:?}");
     }
 }

@@ -113,8 +113,10 @@ fn relax(sim: &mut Simulation, pacer: &mut Pacer, deadline: Instant) -> Result<S
 impl Growth {
     /// Growth in resumable chunks ([`Simulation::advance_growth`]: a few
     /// solver sweeps, one contact iteration, a piece of a rebuild, or the
-    /// extension of the tips), stopping early when a step reaches its
-    /// critical load (its field is shown before the tips move on). Once
+    /// extension of the tips), stopping early when a step has solved at
+    /// the load it records, λ_cr or the load increment's
+    /// ([`Simulation::at_step_load`]: its field is shown before the tips
+    /// move on). Once
     /// growth has ended, the final cracks are solved at the last step's
     /// load factor ([`Simulation::start_final_solve`]), so that the state
     /// shown at the end is solved at the load the history prints; nothing
@@ -153,13 +155,18 @@ impl Growth {
                 let one_done = self
                     .one_step_after
                     .is_some_and(|from| sim.history().len() > from);
-                if (one_done && report.is_none() && sim.is_solved()) || sim.at_critical_load() {
-                    let progress = if sim.at_critical_load() {
-                        Progress::Working
-                    } else {
-                        Progress::Finished
-                    };
-                    return Ok(Slice { progress, status });
+                if one_done && report.is_none() && sim.is_solved() {
+                    return Ok(Slice {
+                        progress: Progress::Finished,
+                        status,
+                    });
+                }
+                if sim.at_step_load() {
+                    // the step's solved state is shown before its tips move
+                    return Ok(Slice {
+                        progress: Progress::Working,
+                        status,
+                    });
                 }
             }
             if !pacer.another_fits(start, n, deadline) {

@@ -84,8 +84,9 @@ pub struct Runner {
     /// When the field last moved to a newer version.
     field_moved_at: Option<Instant>,
     /// The field moves to the latest version at the next frame, however
-    /// recent the last move: a growth step's solve at λ_cr, shown before
-    /// its tips are extended.
+    /// recent the last move: a growth step's solve at the load it records
+    /// (λ_cr, or the load increment's λ), shown before its tips are
+    /// extended.
     show_now: bool,
 }
 
@@ -467,7 +468,7 @@ impl Runner {
         self.field_version
     }
 
-    /// The field of a growth step's critical load waits to be shown (see
+    /// The field of a growth step's load waits to be shown (see
     /// [`field_version`](Self::field_version)).
     pub fn field_due_now(&self) -> bool {
         self.show_now
@@ -525,8 +526,10 @@ impl Task for Runner {
         if matches!(run, Run::Grow(_)) {
             // a later Relax starts its own relaxation
             self.relaxation_started = false;
-            // the field of λ_cr is sampled before the tips move on
-            self.show_now |= sim.at_critical_load();
+            // the field of the step's load (λ_cr, or the load increment's
+            // λ) is sampled before the tips move on: after a split it is
+            // the field kept, at the λ printed
+            self.show_now |= sim.at_step_load();
         }
         let solved = sim.is_solved();
         match result {

@@ -36,7 +36,13 @@ pub struct SolutionView {
     pub residual_samples: usize,
     /// The last residual sample of the current solve.
     pub last_residual: Option<ResidualSample>,
+    /// The growth steps of this simulation (the `step` of each report
+    /// counts from the run a resumed scene continues).
     pub history: Vec<GrowthStepReport>,
+    /// Growth steps done, a resumed run's earlier steps included
+    /// ([`Simulation::steps_done`]): the number the status prints and the
+    /// plots' last step.
+    pub steps_done: usize,
     pub load_factor: f64,
     pub outcome: Option<Outcome>,
     /// The growth run ended at `growth.max_load_factor` (critical control):
@@ -95,6 +101,7 @@ impl SolutionView {
         if history.len() != self.history.len() {
             self.history = history.to_vec();
         }
+        self.steps_done = sim.steps_done();
         let samples = sim.residual_history();
         self.residual_samples = samples.len();
         self.last_residual = samples.last().copied();

@@ -1,6 +1,7 @@
 //! UI tests (egui_kittest) of issue 37: the same scene gives the same
-//! answer whatever ran before, one job runs at a time, and every stop is
-//! explained. They drive the solver: run them with `--release`.
+//! answer whatever ran before, one job runs at a time, every stop is
+//! explained, and what is shown agrees with what is printed. They drive
+//! the solver: run them with `--release`.
 
 use cdca_workbench::app::Message;
 use cdca_workbench::job::Job;
@@ -539,4 +540,216 @@ fn solve_to_end(h: &mut Harness<'_, WorkbenchApp>) {
     h.run_steps(2);
     run_until_paused(h, 5000);
     h.run_steps(2);
+}
+
+/// Clicks `button` (Grow one step, Run growth) and waits for the run to end.
+fn grow(h: &mut Harness<'_, WorkbenchApp>, button: &str) {
+    h.get_by_label(button).click();
+    h.run_steps(2);
+    run_until_paused(h, 20_000);
+    h.run_steps(2);
+}
+
+/// The largest x of a plot's CSV (`series,x,y` rows under a header).
+fn last_x(csv: &str) -> f64 {
+    csv.lines()
+        .skip(1)
+        .filter_map(|row| row.rsplit(',').nth(1)?.parse::<f64>().ok())
+        .fold(f64::NAN, f64::max)
+}
+
+/// A reopened mid-growth run counts its steps as its plots place them. A
+/// scene saved after two growth steps (`growth.resume.steps` = 2) and
+/// reopened used to say "Growth steps 1" after Grow one step, while its
+/// Angles plot put that step at x = 3: the reports number steps on from
+/// the resumed run's (`steps_before`), the status counted this
+/// simulation's. Now the status says 2 on opening (with the plots saying
+/// that they start after step 2) and 3 after the step, the x of the
+/// Angles plot's last point (every step of the default scene extends a
+/// tip, so step 3 has an angle).
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn a_reopened_run_counts_its_steps_as_its_plots_place_them() {
+    use cdca_workbench::PlotTab;
+    use cdca_workbench::command::{Export, PlotFormat};
+    let mut h = solved_default();
+    grow(&mut h, "Grow one step");
+    grow(&mut h, "Grow one step");
+    assert_eq!(h.state().growth_steps(), 2);
+    let saved = h.state().scene_file().expect("the scene saves");
+
+    let mut reopened = harness(Options::default());
+    reopened.run_steps(3);
+    reopened.state_mut().push(Command::OpenSceneText {
+        source: "saved.json".to_owned(),
+        text: saved,
+    });
+    reopened.run_steps(1);
+    run_until_paused(&mut reopened, 2000);
+    reopened.get_by_label("Angles").click();
+    reopened.run_steps(2);
+    assert_eq!(reopened.state().growth_steps(), 2, "the saved run's steps");
+    reopened.get_by_label_contains("This run resumes after growth step 2");
+    grow(&mut reopened, "Grow one step");
+    let app = reopened.state();
+    assert!(app.message().is_none(), "{:?}", app.message());
+    assert_eq!(app.growth_history().len(), 1, "one step in this simulation");
+    assert_eq!(app.growth_steps(), 3, "the status counts the saved steps");
+    let angles = app
+        .table_csv(Export::Plot {
+            tab: PlotTab::Angles,
+            index: 0,
+            format: PlotFormat::Csv,
+        })
+        .expect("the Angles plot has points");
+    assert_eq!(last_x(&angles), 3.0, "the plot's last step: {angles}");
+}
+
+/// The tip inspector's polar plot fits the window: at 1400 × 900 on the
+/// default scene, solved, with its most loaded tip inspected (as it opens),
+/// the plot ran past the window's bottom edge. Now it is a square sized
+/// to the room left in the panel, inside the window, and no smaller than
+/// 160 px (the panel scrolls below that).
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn the_tip_inspectors_polar_plot_fits_the_window() {
+    let h = solved_default();
+    assert!(
+        h.state().inspected_tip().is_some_and(|(_, curve)| curve),
+        "a tip inspected with its curve"
+    );
+    let rect = h.get_by_label("Polar plot of σ_θθ and |τ_rθ| on r0").rect();
+    let window = egui::Rect::from_min_size(egui::Pos2::ZERO, SIZE.into());
+    assert!(window.contains_rect(rect), "{rect:?} outside {window:?}");
+    assert!(
+        (rect.width() - rect.height()).abs() < 1.0 && rect.width() >= 160.0,
+        "a square of at least 160 px: {rect:?}"
+    );
+}
+
+/// A split under load control shows the field at the load it prints. The
+/// edge crack of `EDGE_CRACK` under load control (10 load steps) grows
+/// nothing at λ = 0.1, then twice at λ = 0.2, the second growth cutting
+/// the specimen through (as `cdca grow` records it); the final cracks'
+/// solve finds it split, and the canvas keeps the last solved field. That
+/// field used to be whichever the canvas had last sampled (at most every
+/// 0.15 s while growth ran: the opened scene's solve at λ = 1, or an
+/// earlier increment's), while the status printed λ = 0.2. Now each
+/// step's solve is shown before its tips move, under load control as
+/// under critical control (the fields shown during the run are at λ =
+/// 0.1, 0.2, 0.2 in turn), so the field kept is the last step's solve at
+/// λ = 0.2: its stresses are those of the same state grown headless (1e-9
+/// relative to the largest: the same direct solves).
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn a_split_under_load_control_shows_the_field_of_the_printed_load() {
+    let mut file = cdca::Scene::from_json(EDGE_CRACK)
+        .expect("valid scene")
+        .into_file();
+    file.growth.control = cdca::scene::GrowthControl::Load;
+    let json = file.to_json().expect("JSON");
+    let mut h = harness(Options::default());
+    h.run_steps(3);
+    h.state_mut().push(Command::OpenSceneText {
+        source: "split_load.json".to_owned(),
+        text: json.clone(),
+    });
+    h.run_steps(3);
+    run_until_paused(&mut h, 2000);
+    h.run_steps(1);
+    // the λ of each field the canvas shows while the run goes on
+    let mut shown: Vec<(u64, f64)> = Vec::new();
+    h.get_by_label("Run growth").click();
+    let mut started = false;
+    for _ in 0..20_000 {
+        h.step();
+        let app = h.state();
+        started |= app.run_mode() == RunMode::Growing;
+        if let (Some((version, _)), Some(lambda)) =
+            (app.shown_field(), app.shown_field_load_factor())
+            && shown.last().is_none_or(|s| s.0 != version)
+        {
+            shown.push((version, lambda));
+        }
+        if started && app.run_mode() == RunMode::Paused {
+            break;
+        }
+    }
+    h.run_steps(2);
+    let app = h.state();
+    assert!(app.message().is_none(), "{:?}", app.message());
+    assert_eq!(app.run_mode(), RunMode::Paused, "the run ends");
+    assert_eq!(app.growth_outcome(), Some(cdca::report::Outcome::Through));
+    assert!(app.specimen_split() && !app.is_solved());
+    let loads: Vec<f64> = app.growth_history().iter().map(|s| s.load_factor).collect();
+    assert_eq!(loads, [0.1, 0.2, 0.2], "the steps `cdca grow` records");
+    // every step's solve was shown, in order (a step's state may be shown
+    // more than once, under a newer version)
+    let mut steps = loads.iter().peekable();
+    for (_, lambda) in &shown {
+        if steps.peek() == Some(&lambda) {
+            steps.next();
+        }
+    }
+    assert_eq!(steps.next(), None, "every step's field shown: {shown:?}");
+    assert_eq!(app.load_factor(), 0.2, "the λ printed");
+    assert_eq!(app.shown_field_load_factor(), Some(0.2), "the field's λ");
+    h.get_by_label("0.200");
+    h.get_by_label_contains("The field shown is the last solved state, at λ = 0.200.");
+
+    // the same state headless: two steps, then the third step's solve
+    let scene = cdca::Scene::from_json(&json).expect("valid scene");
+    let mut headless = cdca::Simulation::new(scene).expect("valid scene");
+    headless.grow_step().expect("step 1");
+    headless.grow_step().expect("step 2");
+    for _ in 0..10_000 {
+        if headless.at_step_load() {
+            break;
+        }
+        assert!(
+            headless
+                .advance_growth(usize::MAX)
+                .expect("step 3")
+                .is_none()
+        );
+    }
+    assert!(headless.at_step_load() && headless.load_factor() == 0.2);
+    let scene = app.scene();
+    let (nx, ny) = (scene.mesh.nx, scene.mesh.ny);
+    let stresses = app.shown_stresses();
+    let k = ((stresses.len() / (nx * ny)) as f64).sqrt() as usize;
+    assert_eq!(stresses.len(), nx * ny * k * k, "a complete field");
+    let (cols, rows) = (nx * k, ny * k);
+    let (dx, dy) = (
+        scene.specimen.width / cols as f64,
+        scene.specimen.height / rows as f64,
+    );
+    let scale = stresses
+        .iter()
+        .flatten()
+        .filter(|v| v.is_finite())
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut compared = 0;
+    for (i, s) in stresses.iter().enumerate().step_by(7) {
+        let p = [
+            ((i % cols) as f64 + 0.5) * dx,
+            ((i / cols) as f64 + 0.5) * dy,
+        ];
+        if let Some(t) = headless.stress_at(p) {
+            for (a, b) in s.iter().zip(t) {
+                assert!((a - b).abs() <= 1e-9 * scale, "at {p:?}: {s:?} vs {t:?}");
+            }
+            compared += 1;
+        }
+    }
+    assert!(scale > 0.0 && compared > 50, "{compared} samples compared");
 }

@@ -14,9 +14,10 @@ use egui_plot::{
 
 use crate::command::{Command, Export, PlotFormat};
 use crate::compare::Race;
-use crate::figure::{Figure, Style, YTicks, tick_label, tick_step};
+use crate::figure::{Figure, NOTE_MARKS, Style, YTicks, tick_label, tick_step};
 use crate::figures::figures;
 use crate::plot_tab::PlotTab;
+use crate::solution::SolutionView;
 use crate::study::{SUGGESTED_PATHS, Study, StudySetup, param_unit};
 use crate::units;
 use crate::view::AppView;
@@ -64,19 +65,25 @@ pub fn plots_ui(
         _ => match figs.first() {
             Some(fig) => figure_ui(ui, tab, 0, fig, cmds),
             None => {
-                ui.weak(empty_hint(tab, v.solution.history.len()));
+                ui.weak(empty_hint(tab, v.solution));
             }
         },
     }
 }
 
-/// What an empty plot says: how to fill it, or, after `steps` growth steps
-/// in which no tip grew (a load ramp below every tip's criterion), that.
-fn empty_hint(tab: PlotTab, steps: usize) -> String {
+/// What an empty plot says: how to fill it; after growth steps in which no
+/// tip grew (a load ramp below every tip's criterion), that; on a reopened
+/// run before its next step, that its earlier steps are not plotted.
+fn empty_hint(tab: PlotTab, view: &SolutionView) -> String {
+    let steps = view.history.len();
     match tab {
         PlotTab::ResidualBySweep | PlotTab::ResidualByTime => {
             "No residual history: the direct solver solves in one step. Choose an iterative solver and press Step or Relax.".to_owned()
         }
+        _ if steps == 0 && view.steps_done > 0 => format!(
+            "This run resumes after growth step {}: the plots show the steps grown from here on (press Grow one step or Run growth).",
+            view.steps_done
+        ),
         _ if steps > 0 => format!(
             "No tip has grown in {steps} growth step{}: every tip stayed below its criterion (the tip inspector shows how far).",
             if steps == 1 { "" } else { "s" }
@@ -195,15 +202,31 @@ fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut V
             plot.vline(VLine::new(name, *x).color(*colour));
         }
         // numbered marks on the plot, their words below it: notes at
-        // nearby points used to run into each other
-        for (i, n) in fig.notes.iter().enumerate() {
+        // nearby points used to run into each other; a mark in the right
+        // fifth of the data points at it from the left, so that it is not
+        // cut off at the plot's edge
+        let xs = || fig.series.iter().flat_map(|s| &s.points).map(|p| p[0]);
+        let x_lo = xs().fold(f64::INFINITY, f64::min);
+        let x_hi = xs().fold(f64::NEG_INFINITY, f64::max);
+        for (at, numbers) in fig.note_marks() {
+            let (text, anchor) = if at[0] > x_lo + 0.8 * (x_hi - x_lo) {
+                (
+                    format!("{numbers} {}", NOTE_MARKS[1]),
+                    egui::Align2::RIGHT_CENTER,
+                )
+            } else {
+                (
+                    format!("{} {numbers}", NOTE_MARKS[0]),
+                    egui::Align2::LEFT_CENTER,
+                )
+            };
             plot.text(
                 Text::new(
                     "note",
-                    PlotPoint::new(n.at[0], n.at[1]),
-                    RichText::new(format!("◀ {}", i + 1)).small().strong(),
+                    PlotPoint::new(at[0], at[1]),
+                    RichText::new(text).small().strong(),
                 )
-                .anchor(egui::Align2::LEFT_CENTER),
+                .anchor(anchor),
             );
         }
     });

@@ -385,11 +385,10 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
                     format!("load factor λ = {:.3} of 1", view.load_factor),
                 ),
                 GrowthControl::Critical => (
-                    view.history.len() as f64 / g.max_steps.max(1) as f64,
+                    view.steps_done as f64 / g.max_steps.max(1) as f64,
                     format!(
                         "{} of at most {} steps (growth.max_steps)",
-                        view.history.len(),
-                        g.max_steps
+                        view.steps_done, g.max_steps
                     ),
                 ),
             };
@@ -477,8 +476,10 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
             ));
             ui.end_row();
         }
+        // counted as the plots and reports count them: a reopened run's
+        // earlier steps included
         ui.label("Growth steps");
-        ui.label(view.history.len().to_string());
+        ui.label(view.steps_done.to_string());
         ui.end_row();
         ui.label("Load factor λ");
         // no load is applied to an unsolved, edited scene: no 0.000
@@ -677,7 +678,7 @@ fn iterations(kind: SolverKind, n: usize) -> String {
 /// The growth run's progress line: step, λ, iterations and residual of the
 /// step's solve.
 fn growth_progress(view: &crate::solution::SolutionView) -> String {
-    let step = view.history.len() + 1;
+    let step = view.steps_done + 1;
     if let Some(done) = view.rebuild {
         return format!(
             "step {step}: integrating the cracked elements' stiffness, {:.0}%",

@@ -19,6 +19,19 @@ const SIGMA_COLOR: Color32 = Color32::from_rgb(70, 140, 255);
 const TAU_COLOR: Color32 = Color32::from_rgb(255, 150, 40);
 const ANGLE_COLOR: Color32 = Color32::from_rgb(40, 200, 90);
 
+/// The polar plot's name for assistive technology (and the UI tests).
+const POLAR_PLOT_LABEL: &str = "Polar plot of σ_θθ and |τ_rθ| on r0";
+
+/// Largest side of the polar plot, px.
+const MAX_POLAR_SIDE: f32 = 320.0;
+
+/// Width kept beside the polar plot for its key, px.
+const KEY_WIDTH: f32 = 110.0;
+
+/// Smallest side of the polar plot, px: with less room left above the
+/// window's bottom the panel scrolls to it.
+const MIN_POLAR_SIDE: f32 = 160.0;
+
 pub fn tip_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
     ui.heading("Tip inspector");
     let tips = &v.solution.tips;
@@ -164,89 +177,97 @@ fn polar_plot_ui(ui: &mut Ui, scene: &SceneFile, tip: &TipReport, c: &CriterionC
     if comprehensive && c.shear_envelope.is_none() {
         ui.weak("Shear branch off: the faces at this tip are open.");
     }
-    // the key above the plot, as on the other plots: inside it would cover the curves
+    // the key beside the plot: inside it would cover the curves, and above
+    // it took the height the plot needs
     let shear = comprehensive && !tau_limit.is_empty();
     let chosen = tip.criterion.mode != Mode::None;
-    // two rows that fit the panel: the tension curves, then the shear ones
-    let rows = [
-        vec![
-            ("σ_θθ", SIGMA_COLOR, Style::Line, true),
-            ("σ_t", SIGMA_COLOR, Style::Dashed, true),
-            ("0 MPa", Color32::GRAY, Style::Dashed, true),
-        ],
-        vec![
-            ("|τ_rθ|", TAU_COLOR, Style::Line, shear),
-            ("shear limit", TAU_COLOR, Style::Dashed, shear),
-            ("chosen angle", ANGLE_COLOR, Style::Line, chosen),
-        ],
+    let key = [
+        ("σ_θθ", SIGMA_COLOR, Style::Line, true),
+        ("σ_t", SIGMA_COLOR, Style::Dashed, true),
+        ("0 MPa", Color32::GRAY, Style::Dashed, true),
+        ("|τ_rθ|", TAU_COLOR, Style::Line, shear),
+        ("shear limit", TAU_COLOR, Style::Dashed, shear),
+        ("chosen angle", ANGLE_COLOR, Style::Line, chosen),
     ];
-    for row in rows {
-        ui.horizontal(|ui| {
-            for (name, colour, style, shown) in row {
+    // square, no taller than the room left in the panel's view (it ran
+    // past the bottom of a 1400 × 900 window), with the outermost curve
+    // inside
+    let room = ui.clip_rect().bottom() - ui.cursor().top() - ui.spacing().item_spacing.y;
+    let side = (ui.available_width() - KEY_WIDTH - ui.spacing().item_spacing.x)
+        .min(MAX_POLAR_SIDE)
+        .min(room)
+        .max(MIN_POLAR_SIDE);
+    let reach = outer * 1e-6 * 1.05;
+    ui.horizontal_top(|ui| {
+        let shown = Plot::new("polar")
+            .data_aspect(1.0)
+            .width(side)
+            .height(side)
+            .include_x(-reach)
+            .include_x(reach)
+            .include_y(-reach)
+            .include_y(reach)
+            .show_axes(false)
+            .show_grid(false)
+            .show(ui, |plot| {
+                plot.line(
+                    Line::new("0 MPa", circle(-base * 1e-6))
+                        .color(Color32::GRAY)
+                        .style(LineStyle::dashed_dense()),
+                );
+                plot.line(
+                    Line::new(
+                        "σ_θθ",
+                        polar(&c.theta_deg, c.sigma_tt.iter().copied(), base),
+                    )
+                    .color(SIGMA_COLOR)
+                    .width(2.0),
+                );
+                plot.line(
+                    Line::new("σ_t", circle((c.sigma_t - base) * 1e-6))
+                        .color(SIGMA_COLOR)
+                        .style(LineStyle::dashed_loose()),
+                );
+                if shear {
+                    plot.line(
+                        Line::new("|τ_rθ|", polar(&c.theta_deg, tau_abs.iter().copied(), base))
+                            .color(TAU_COLOR)
+                            .width(2.0),
+                    );
+                    plot.line(
+                        Line::new(
+                            "shear limit",
+                            polar(&c.theta_deg, tau_limit.iter().copied(), base),
+                        )
+                        .color(TAU_COLOR)
+                        .style(LineStyle::dashed_loose()),
+                    );
+                }
+                if chosen {
+                    let a = tip.criterion.angle_deg.to_radians();
+                    let r = outer * 1e-6;
+                    plot.line(
+                        Line::new(
+                            "chosen angle",
+                            PlotPoints::from(vec![[0.0, 0.0], [r * a.cos(), r * a.sin()]]),
+                        )
+                        .color(ANGLE_COLOR)
+                        .width(2.5),
+                    );
+                }
+            });
+        shown
+            .response
+            .widget_info(|| egui::WidgetInfo::labeled(egui::Role::Figure, true, POLAR_PLOT_LABEL));
+        ui.vertical(|ui| {
+            for (name, colour, style, shown) in key {
                 if shown {
-                    swatch(ui, colour, Some(style));
-                    ui.label(name);
+                    ui.horizontal(|ui| {
+                        swatch(ui, colour, Some(style));
+                        ui.label(name);
+                    });
                 }
             }
         });
-    }
-    // square, as wide as the panel, with the outermost curve inside
-    let reach = outer * 1e-6 * 1.05;
-    Plot::new("polar")
-        .data_aspect(1.0)
-        .view_aspect(1.0)
-        .width(ui.available_width().min(320.0))
-        .include_x(-reach)
-        .include_x(reach)
-        .include_y(-reach)
-        .include_y(reach)
-        .show_axes(false)
-        .show_grid(false)
-        .show(ui, |plot| {
-            plot.line(
-                Line::new("0 MPa", circle(-base * 1e-6))
-                    .color(Color32::GRAY)
-                    .style(LineStyle::dashed_dense()),
-            );
-            plot.line(
-                Line::new(
-                    "σ_θθ",
-                    polar(&c.theta_deg, c.sigma_tt.iter().copied(), base),
-                )
-                .color(SIGMA_COLOR)
-                .width(2.0),
-            );
-            plot.line(
-                Line::new("σ_t", circle((c.sigma_t - base) * 1e-6))
-                    .color(SIGMA_COLOR)
-                    .style(LineStyle::dashed_loose()),
-            );
-            if shear {
-                plot.line(
-                    Line::new("|τ_rθ|", polar(&c.theta_deg, tau_abs.iter().copied(), base))
-                        .color(TAU_COLOR)
-                        .width(2.0),
-                );
-                plot.line(
-                    Line::new(
-                        "shear limit",
-                        polar(&c.theta_deg, tau_limit.iter().copied(), base),
-                    )
-                    .color(TAU_COLOR)
-                    .style(LineStyle::dashed_loose()),
-                );
-            }
-            if chosen {
-                let a = tip.criterion.angle_deg.to_radians();
-                let r = outer * 1e-6;
-                plot.line(
-                    Line::new(
-                        "chosen angle",
-                        PlotPoints::from(vec![[0.0, 0.0], [r * a.cos(), r * a.sin()]]),
-                    )
-                    .color(ANGLE_COLOR)
-                    .width(2.5),
-                );
-            }
-        });
+    });
 }

@@ -186,7 +186,7 @@ impl Simulation {
             .collect();
         let nothing = growing.is_empty() && starting.is_empty();
         let mut step = GrowthStepReport {
-            step: self.state.steps_before + self.state.history.len() + 1,
+            step: self.steps_done() + 1,
             load_factor: self.state.lambda,
             grown: Vec::new(),
             contact: ContactCounts {
@@ -466,9 +466,31 @@ impl Simulation {
         Some(lambda)
     }
 
-    /// Growth history so far.
+    /// Growth history so far: the steps of this simulation (a scene that
+    /// resumes a run, `growth.resume`, starts with none).
     pub fn history(&self) -> &[GrowthStepReport] {
         &self.state.history
+    }
+
+    /// Growth steps done, those of the run this scene resumes included
+    /// (`growth.resume.steps` + [`history`](Self::history)): the `step`
+    /// number of the last report, 0 before any.
+    pub fn steps_done(&self) -> usize {
+        self.state.steps_before + self.state.history.len()
+    }
+
+    /// Whether the step in progress has solved at the load it records and
+    /// its tips have not moved yet: under critical control the solve at
+    /// λ_cr ([`at_critical_load`](Self::at_critical_load)), under load
+    /// control the solve at the increment's load factor. The state can be
+    /// shown; the next [`advance_growth`](Self::advance_growth) call
+    /// decides and extends the tips.
+    pub fn at_step_load(&self) -> bool {
+        if self.critical_control() {
+            self.at_critical_load()
+        } else {
+            self.scratch.growth_start.is_some() && self.state.solved && self.scratch.job.is_none()
+        }
     }
 
     /// Whether growth has ended (through, unstable, max steps, completed).

@@ -5,6 +5,9 @@
 //! run with solving switched off, so they exercise the UI, editing and undo
 //! on their own.
 
+#[path = "support/field.rs"]
+mod field;
+
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -1308,35 +1311,7 @@ fn the_end_of_a_growth_run_is_solved_and_shown_at_the_printed_load() {
     // the default flaw's cracks run out through the specimen
     assert_eq!(app.growth_outcome(), Some(cdca::report::Outcome::Through));
 
-    let scene = app.scene();
-    let (nx, ny) = (scene.mesh.nx, scene.mesh.ny);
-    let stresses = app.shown_stresses();
-    let k = ((stresses.len() / (nx * ny)) as f64).sqrt() as usize;
-    assert_eq!(stresses.len(), nx * ny * k * k, "a complete field");
-    let (cols, rows) = (nx * k, ny * k);
-    let (dx, dy) = (
-        scene.specimen.width / cols as f64,
-        scene.specimen.height / rows as f64,
-    );
-    let scale = stresses
-        .iter()
-        .flatten()
-        .filter(|v| v.is_finite())
-        .fold(0.0f64, |m, v| m.max(v.abs()));
-    let mut compared = 0;
-    for (i, s) in stresses.iter().enumerate().step_by(37) {
-        let p = [
-            ((i % cols) as f64 + 0.5) * dx,
-            ((i / cols) as f64 + 0.5) * dy,
-        ];
-        if let Some(t) = headless.stress_at(p) {
-            for (a, b) in s.iter().zip(t) {
-                assert!((a - b).abs() <= 1e-9 * scale, "at {p:?}: {s:?} vs {t:?}");
-            }
-            compared += 1;
-        }
-    }
-    assert!(scale > 0.0 && compared > 100, "{compared} samples compared");
+    field::assert_shown_field_is(app, &headless, 37, 100);
 }
 
 /// The solver race keeps the solved field on the canvas: started with the

@@ -3,6 +3,9 @@
 //! explained, and what is shown agrees with what is printed. They drive
 //! the solver: run them with `--release`.
 
+#[path = "support/field.rs"]
+mod field;
+
 use cdca_workbench::app::Message;
 use cdca_workbench::job::Job;
 use cdca_workbench::{Command, Options, RunMode, WorkbenchApp};
@@ -723,33 +726,5 @@ fn a_split_under_load_control_shows_the_field_of_the_printed_load() {
         );
     }
     assert!(headless.at_step_load() && headless.load_factor() == 0.2);
-    let scene = app.scene();
-    let (nx, ny) = (scene.mesh.nx, scene.mesh.ny);
-    let stresses = app.shown_stresses();
-    let k = ((stresses.len() / (nx * ny)) as f64).sqrt() as usize;
-    assert_eq!(stresses.len(), nx * ny * k * k, "a complete field");
-    let (cols, rows) = (nx * k, ny * k);
-    let (dx, dy) = (
-        scene.specimen.width / cols as f64,
-        scene.specimen.height / rows as f64,
-    );
-    let scale = stresses
-        .iter()
-        .flatten()
-        .filter(|v| v.is_finite())
-        .fold(0.0f64, |m, v| m.max(v.abs()));
-    let mut compared = 0;
-    for (i, s) in stresses.iter().enumerate().step_by(7) {
-        let p = [
-            ((i % cols) as f64 + 0.5) * dx,
-            ((i / cols) as f64 + 0.5) * dy,
-        ];
-        if let Some(t) = headless.stress_at(p) {
-            for (a, b) in s.iter().zip(t) {
-                assert!((a - b).abs() <= 1e-9 * scale, "at {p:?}: {s:?} vs {t:?}");
-            }
-            compared += 1;
-        }
-    }
-    assert!(scale > 0.0 && compared > 50, "{compared} samples compared");
+    field::assert_shown_field_is(app, &headless, 7, 50);
 }

@@ -38,6 +38,19 @@ pub struct Circle {
     pub tau_rt: Vec<f64>,
 }
 
+impl Circle {
+    /// Adds the sample at angle `th` of the global stress `s` (σxx, σyy,
+    /// τxy), with the circle's radial and tangential unit vectors `er`,
+    /// `et` there: `σ_θθ = e_θ·σ·e_θ`, `τ_rθ = e_r·σ·e_θ`.
+    pub fn push(&mut self, th: f64, s: [f64; 3], er: P2, et: P2) {
+        let traction =
+            |a: P2, b: P2| a.x * (s[0] * b.x + s[2] * b.y) + a.y * (s[2] * b.x + s[1] * b.y);
+        self.theta.push(th);
+        self.sigma_tt.push(traction(et, et));
+        self.tau_rt.push(traction(er, et));
+    }
+}
+
 /// Settings resolved from the scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CriterionParams {
@@ -191,11 +204,7 @@ pub fn sample_field(frame: &TipFrame, r0: f64, stress: &dyn Fn(P2) -> Option<[f6
         let Some(s) = stress(frame.origin + r0 * er) else {
             continue;
         };
-        let traction =
-            |a: P2, b: P2| a.x * (s[0] * b.x + s[2] * b.y) + a.y * (s[2] * b.x + s[1] * b.y);
-        c.theta.push(th);
-        c.sigma_tt.push(traction(et, et));
-        c.tau_rt.push(traction(er, et));
+        c.push(th, s, er, et);
     }
     c
 }

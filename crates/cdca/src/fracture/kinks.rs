@@ -143,11 +143,7 @@ pub fn sample_kink(
         let Some(s) = stress(x) else {
             continue;
         };
-        let traction =
-            |a: P2, b: P2| a.x * (s[0] * b.x + s[2] * b.y) + a.y * (s[2] * b.x + s[1] * b.y);
-        c.theta.push(th);
-        c.sigma_tt.push(traction(et, et));
-        c.tau_rt.push(traction(er, et));
+        c.push(th, s, er, et);
     }
     c
 }

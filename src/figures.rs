@@ -612,6 +612,14 @@ mod tests {
         let ctx = egui::Context::default();
         let _ = ctx.run_ui(egui::RawInput::default(), |_| {});
         let font = egui::FontId::proportional(12.0);
+        // and the marks of secondary cracks and of the first link
+        let linked = SolutionView {
+            history: linked_history(),
+            ..SolutionView::default()
+        };
+        let load = &figures(PlotTab::LoadFactor, &linked, None, None, SIZE)[0];
+        texts.extend(load.notes.iter().map(|n| n.text.clone()));
+        texts.extend(load.legend().map(|s| load.legend_name(s).to_owned()));
         let missing: Vec<char> = ctx.fonts_mut(|f| {
             texts
                 .iter()
@@ -620,5 +628,54 @@ mod tests {
                 .collect()
         });
         assert!(missing.is_empty(), "no glyph for {missing:?}");
+    }
+
+    /// Three steps of a pair: a secondary crack starts at step 2, and at
+    /// step 3 it ends on the other flaw's wing (the first link).
+    fn linked_history() -> Vec<GrowthStepReport> {
+        use cdca::report::{LinkReport, Part, StartedCrack};
+        let mut history = vec![
+            step(1, 0.6, 4, 60.0),
+            step(2, 0.7, 4, 1.0),
+            step(3, 0.9, 3, 2.0),
+        ];
+        history[1].started = vec![StartedCrack::default()];
+        history[2].links = vec![LinkReport {
+            crack: 2,
+            tip: 1,
+            main: 1,
+            joins: [Part::Secondary, Part::Wing],
+            flaws: [0, 1],
+            coalescence: true,
+        }];
+        history
+    }
+
+    /// The load-factor plot marks where secondary cracks started (a
+    /// series of markers) and the first link between two flaws (a note
+    /// naming the flaws, 1-based as the panel counts, and what it joins).
+    #[test]
+    fn the_first_link_and_the_secondary_starts_are_marked() {
+        let view = SolutionView {
+            history: linked_history(),
+            ..SolutionView::default()
+        };
+        let load = &figures(PlotTab::LoadFactor, &view, None, None, SIZE)[0];
+        let started = load
+            .series
+            .iter()
+            .find(|s| s.name == "a secondary crack started at a kink")
+            .expect("the starts' series");
+        assert_eq!(started.points, vec![[5.0, 0.7]], "step 2, x in mm");
+        let link = load
+            .notes
+            .iter()
+            .find(|n| n.text.contains("linked"))
+            .expect("the link's note");
+        assert_eq!(link.at, [5.5, 0.9]);
+        assert_eq!(
+            link.text,
+            "λ = 0.900: flaws 1 and 2 linked (secondary–wing)"
+        );
     }
 }

@@ -290,6 +290,16 @@ impl WorkbenchApp {
     pub fn is_solved(&self) -> bool {
         self.runner.view().solved
     }
+    /// Whether the last Solve was checked from bonded faces (it ended
+    /// converged with faces closed), and the sentence saying it found
+    /// another solution, if it did.
+    pub fn second_start(&self) -> (bool, Option<&str>) {
+        let v = self.runner.view();
+        (
+            v.second_start == crate::solution::SecondStart::Done,
+            v.other_solution.as_deref(),
+        )
+    }
     /// The sampled field currently shown, if complete.
     pub fn field_is_shown(&self) -> bool {
         self.runner.field().current().is_some()

@@ -3,6 +3,7 @@
 //! field. Its state changes only through the methods the app's commands
 //! call, and through its run advancing.
 
+use cdca::report::OtherSolutionReport;
 use cdca::scene::{ContactUpdate, SceneFile, SolverKind};
 use cdca::{Scene, Simulation, SolveError};
 use web_time::Instant;
@@ -10,7 +11,7 @@ use web_time::Instant;
 use crate::field::{FieldKey, FieldSampler};
 use crate::pacer::Pacer;
 use crate::run::{Run, RunMode};
-use crate::solution::SolutionView;
+use crate::solution::{SecondStart, SolutionView};
 use crate::task::{Progress, Task};
 
 /// Relative residual to which iterative solvers solve in growth: the
@@ -53,6 +54,13 @@ pub struct Runner {
     sim: Option<Simulation>,
     /// The run in progress (None: paused).
     run: Option<Run>,
+    /// After Solve, the same problem from bonded faces, and the first
+    /// solve's report: where faces close, Coulomb friction need not have
+    /// one solution, and the app says when it has another.
+    second_start: Option<(Simulation, cdca::report::SolveReport)>,
+    /// The solve under way was started by Solve: check it from bonded
+    /// faces when it ends converged with faces closed.
+    check_second_start: bool,
     /// The simulation an edit invalidated, kept until the next build: its
     /// discretisation is reused when the edit left it unchanged
     /// (`Simulation::with_scene`: a load, the faces' friction, the solver);
@@ -96,6 +104,8 @@ impl Default for Runner {
             checked: Err("no scene yet".to_owned()),
             sim: None,
             run: None,
+            second_start: None,
+            check_second_start: false,
             spare: None,
             relaxation_started: false,
             pacer: Pacer::default(),
@@ -247,6 +257,7 @@ impl Runner {
     /// (cheap; `Scene::try_from`); the discretisation is built when solver
     /// work is asked for.
     pub fn invalidate(&mut self, scene: &SceneFile) -> Result<(), String> {
+        self.drop_second_start();
         if let Some(mut sim) = self.sim.take() {
             // kept for its discretisation only: its factor is freed now
             sim.release_solver();
@@ -309,6 +320,8 @@ impl Runner {
     /// contact states and K do not depend on what ran before.
     pub fn solve(&mut self) -> Result<(), String> {
         self.fresh_start()?;
+        self.drop_second_start();
+        self.check_second_start = true;
         // the direct solve too runs as a relaxation, one contact iteration
         // (one factorisation) per slice at most, so that no frame holds a
         // whole solve (in a browser 0.2 s at 60 × 60)
@@ -359,6 +372,7 @@ impl Runner {
 
     /// One sweep of the current relaxation (starting one if needed).
     pub fn step(&mut self) -> Result<(), String> {
+        self.drop_second_start();
         self.run = None;
         self.direct_solve = None;
         self.start_relaxation();
@@ -401,6 +415,7 @@ impl Runner {
     /// load carries its friction history into the first, lower, load
     /// increment, where the contact iteration then fails to settle).
     pub fn start_growth(&mut self, one: bool) -> Result<(), String> {
+        self.drop_second_start();
         let Some(sim) = self.sim.as_ref() else {
             return Ok(());
         };
@@ -429,6 +444,7 @@ impl Runner {
     /// Stops the run in progress where it is (it can go on later; a direct
     /// solve starts again at the next Solve).
     pub fn pause(&mut self) {
+        self.drop_second_start();
         self.run = None;
         self.direct_solve = None;
     }
@@ -506,12 +522,78 @@ impl Task for FieldTask<'_> {
     }
 }
 
+impl Runner {
+    /// Forgets the check for another solution (a new solve, an edit, a
+    /// pause, growth): what it would say no longer belongs to what is shown.
+    fn drop_second_start(&mut self) {
+        self.second_start = None;
+        self.check_second_start = false;
+        self.view.other_solution = None;
+        self.view.second_start = SecondStart::NotRun;
+    }
+
+    /// After Solve has ended converged with faces closed: starts the same
+    /// problem from bonded faces (the run goes on until it ends). Returns
+    /// whether it started.
+    fn start_second_start(&mut self) -> bool {
+        let Some(sim) = self.sim.as_ref() else {
+            return false;
+        };
+        let first = sim.report(0.0);
+        let check = std::mem::take(&mut self.check_second_start)
+            && first.failure().is_none()
+            && first.contact.stick + first.contact.slip > 0;
+        let Some(other) = check.then(|| sim.bonded_start().ok()).flatten() else {
+            return false;
+        };
+        self.second_start = Some((other, first));
+        self.view.second_start = SecondStart::Running;
+        true
+    }
+
+    /// The solve from bonded faces until `deadline`; at its end the view
+    /// says whether it found another solution, and the run ends. A solve
+    /// that fails or does not converge says nothing about the first: no
+    /// other solution is reported.
+    fn advance_second_start(&mut self, deadline: Instant) -> Progress {
+        let Some((other, _)) = self.second_start.as_mut() else {
+            return Progress::Finished;
+        };
+        loop {
+            let start = Instant::now();
+            let n = self.pacer.sweeps();
+            match other.relax(n) {
+                Ok(s) if !s.finished => {
+                    if !self.pacer.another_fits(start, n, deadline) {
+                        return Progress::Working;
+                    }
+                }
+                result => {
+                    let (other, first) = self.second_start.take().expect("checked above");
+                    self.view.other_solution = result
+                        .ok()
+                        .and_then(|_| {
+                            OtherSolutionReport::between(&first, &other.report(0.0), "bonded")
+                        })
+                        .map(|o| o.sentence(&first.contact));
+                    self.view.second_start = SecondStart::Done;
+                    self.run = None;
+                    return Progress::Finished;
+                }
+            }
+        }
+    }
+}
+
 impl Task for Runner {
     /// The run in progress until `deadline`; the view is refreshed after
     /// the slice. When the solve of the final cracks finds the specimen
     /// split (no stiffness against a piece's rigid motion), the run ends
     /// showing the last solved state.
     fn advance(&mut self, deadline: Instant) -> Result<Progress, String> {
+        if self.second_start.is_some() {
+            return Ok(self.advance_second_start(deadline));
+        }
         let (Some(sim), Some(run)) = (self.sim.as_mut(), self.run.as_mut()) else {
             self.run = None;
             return Ok(Progress::Finished);
@@ -536,11 +618,14 @@ impl Task for Runner {
             Ok(slice) => {
                 self.refresh(solved, slice.status);
                 if slice.progress == Progress::Finished {
-                    self.run = None;
                     if let Some(t) = self.direct_solve.take() {
                         self.last_solve_seconds = Some(t);
                         self.last_solve_elements = elements;
                     }
+                    if self.start_second_start() {
+                        return Ok(Progress::Working);
+                    }
+                    self.run = None;
                 }
                 Ok(slice.progress)
             }

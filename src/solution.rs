@@ -48,6 +48,12 @@ pub struct SolutionView {
     /// The growth run ended at `growth.max_load_factor` (critical control):
     /// no free tip meets its criterion below it.
     pub load_cap: Option<LoadCapReport>,
+    /// The solve from bonded faces found another solution of the same
+    /// frictional problem (`Simulation::bonded_start`): the sentence
+    /// saying so, with both solutions' contact counts.
+    pub other_solution: Option<String>,
+    /// That second solve is under way, or has ended (whatever it found).
+    pub second_start: SecondStart,
     /// Status of the current relaxation, if one ran.
     pub relax: Option<RelaxStatus>,
     /// The linear solver behind `relax` and the residual samples (during
@@ -198,6 +204,18 @@ fn decimate<T>(samples: &[T], f: impl Fn(&T) -> PlotPoint) -> Vec<PlotPoint> {
         out.push(f(&samples[n - 1]));
     }
     out
+}
+
+/// Where the check of a solve for another solution stands.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SecondStart {
+    /// Not run: no Solve yet, or no face closed (nothing to compare).
+    #[default]
+    NotRun,
+    /// Solving the same problem from bonded faces.
+    Running,
+    /// Done (`other_solution` says what it found).
+    Done,
 }
 
 #[cfg(test)]

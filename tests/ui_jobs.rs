@@ -728,3 +728,24 @@ fn a_split_under_load_control_shows_the_field_of_the_printed_load() {
     assert!(headless.at_step_load() && headless.load_factor() == 0.2);
     field::assert_shown_field_is(app, &headless, 7, 50);
 }
+
+/// Solve checks its answer from the opposite start (issue 37: where the
+/// frictional problem has more than one solution, say so): on the default
+/// scene, whose flaw's faces close, Solve goes on to solve the same problem
+/// from bonded faces, and the panel then says it has one solution from both
+/// starts (the library's check finds none on the bundled scenes, see
+/// `the_frictional_problem_has_one_solution_from_both_starts`). The state
+/// shown stays the first solve's: the command line's answer.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn solve_says_whether_another_start_finds_another_solution() {
+    let mut h = solved_default();
+    solve(&mut h);
+    assert_eq!(h.state().second_start(), (true, None));
+    h.get_by_label("one solution from open and from bonded faces");
+    let json = h.state().scene_file().expect("the scene as JSON");
+    assert_cli_answer(&h, &json, "after the check");
+}

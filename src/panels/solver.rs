@@ -11,6 +11,7 @@ use crate::command::Command;
 use crate::compare::solver_name;
 use crate::job::{Job, capitalised};
 use crate::run::RunMode;
+use crate::solution::SecondStart;
 use crate::units;
 use crate::view::AppView;
 
@@ -523,6 +524,31 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
                 count(cdca::ContactState::Slip)
             ));
             ui.end_row();
+        }
+        match (view.second_start, &view.other_solution) {
+            (SecondStart::Running, _) => {
+                ui.label("Uniqueness");
+                ui.label("checking: solving again from bonded faces…");
+                ui.end_row();
+            }
+            (SecondStart::Done, Some(sentence)) => {
+                ui.label("Uniqueness");
+                ui.colored_label(ui.visuals().warn_fg_color, "more than one solution (hover)")
+                    .on_hover_text(sentence);
+                ui.end_row();
+            }
+            (SecondStart::Done, None) => {
+                ui.label("Uniqueness");
+                ui.label("one solution from open and from bonded faces")
+                    .on_hover_text(
+                        "Solved again from the opposite start (every face point stuck, \
+                         friction limits far above any traction): the same contact states \
+                         and K (within 1e-6). Coulomb friction need not have one solution; \
+                         here it has.",
+                    );
+                ui.end_row();
+            }
+            _ => {}
         }
     });
     if let Some(r) = view.intact_rock {

@@ -3,6 +3,8 @@
 
 use std::path::PathBuf;
 
+use cdca::report::OtherSolutionReport;
+
 use crate::error::CliError;
 use crate::{output, scene_file};
 
@@ -16,9 +18,18 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     // The scene is validated here, before any solve.
     let mut sim = scene_file::simulation(&args.scene)?;
     sim.set_load_factor(1.0);
-    let report = sim.solve()?;
+    let mut report = sim.solve()?;
+    // where faces close, the same problem from the opposite start: Coulomb
+    // friction need not have one solution
+    if report.contact.stick + report.contact.slip > 0 {
+        let second = sim.bonded_start()?.solve()?;
+        report.other_solution = OtherSolutionReport::between(&report, &second, "bonded");
+    }
     output::print_json(&report)?;
     output::note_intact_rock("at full load", report.intact_rock.as_ref());
+    if let Some(o) = &report.other_solution {
+        eprintln!("cdca: note: {}", o.sentence(&report.contact));
+    }
     // the report is printed either way; an unconverged solve exits 1
     match report.failure() {
         Some(why) => Err(CliError::Failure(why)),

@@ -28,6 +28,85 @@ pub struct SolveReport {
     /// (left out when there is none).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub kinks: Vec<KinkReport>,
+    /// The same solve from bonded faces found another solution: the
+    /// frictional problem has more than one here (left out when it found
+    /// the same, or was not run; `cdca solve` runs it where faces close).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub other_solution: Option<OtherSolutionReport>,
+}
+
+/// Largest difference of a tip's K_I or K_II, over the largest |K| of a
+/// solution, below which two solutions are the same (the direct solve's
+/// residual is below 1e-8, the contact iteration's tolerance 1e-8).
+pub const SAME_SOLUTION_K: f64 = 1e-6;
+
+/// Another solution of the same frictional problem (same scene, load and
+/// slip history) from another start of the contact iteration: Coulomb
+/// friction with closed faces need not have one solution, and then which
+/// one a solve finds depends on where it starts.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct OtherSolutionReport {
+    /// What the other solve started from (`"bonded"`: every face point in
+    /// stick with friction limits far above any traction; the first starts
+    /// with the faces open).
+    pub start: String,
+    pub open: usize,
+    pub stick: usize,
+    pub slip: usize,
+    /// Largest difference of a tip's K_I or K_II from the first solution's,
+    /// over the first solution's largest |K|.
+    pub k_difference: f64,
+}
+
+impl OtherSolutionReport {
+    /// `other`, solved from `start`, against `first`: another solution when
+    /// both converged and they differ in their contact counts or by more
+    /// than [`SAME_SOLUTION_K`] in K; `None` otherwise.
+    pub fn between(first: &SolveReport, other: &SolveReport, start: &str) -> Option<Self> {
+        if first.failure().is_some() || other.failure().is_some() {
+            return None;
+        }
+        let scale = first
+            .tips
+            .iter()
+            .map(|t| t.k1.abs().max(t.k2.abs()))
+            .fold(0.0, f64::max);
+        let k_difference = first
+            .tips
+            .iter()
+            .zip(&other.tips)
+            .map(|(a, b)| (a.k1 - b.k1).abs().max((a.k2 - b.k2).abs()))
+            .fold(0.0, f64::max)
+            / scale.max(f64::MIN_POSITIVE);
+        let c = &other.contact;
+        let counts = (c.open, c.stick, c.slip);
+        let same = counts == (first.contact.open, first.contact.stick, first.contact.slip)
+            && k_difference <= SAME_SOLUTION_K;
+        (!same).then(|| Self {
+            start: start.to_owned(),
+            open: c.open,
+            stick: c.stick,
+            slip: c.slip,
+            k_difference,
+        })
+    }
+
+    /// The sentence the CLI and the workbench print.
+    pub fn sentence(&self, first: &ContactReport) -> String {
+        format!(
+            "the frictional problem has more than one solution here: from open faces \
+             {} open, {} stick, {} slip; from {} faces {} open, {} stick, {} slip \
+             (K differs by {:.2e} of the largest |K|)",
+            first.open,
+            first.stick,
+            first.slip,
+            self.start,
+            self.open,
+            self.stick,
+            self.slip,
+            self.k_difference
+        )
+    }
 }
 
 /// A sharp kink of a crack (a flaw's end that a wing has left, or any

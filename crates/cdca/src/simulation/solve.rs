@@ -32,6 +32,44 @@ impl Simulation {
         })
     }
 
+    /// A new simulation of this one's scene, cracks and load factor, with
+    /// its discretisation copied (integrated elements, stiffness pattern)
+    /// and nothing solved, set up so that its next solve starts from the
+    /// opposite of the start [`solve`](Self::solve) makes on a new
+    /// simulation: every face point closed and stuck with friction limits
+    /// far above any traction (the faces bonded) instead of open with none.
+    /// The contact iteration holds the friction limits fixed in a convex
+    /// inner (Tresca) problem, whose solution does not depend on the
+    /// states it starts from; the limits it starts from are what can lead
+    /// it to another solution. Compare the two reports with
+    /// [`OtherSolutionReport::between`](crate::report::OtherSolutionReport::between).
+    /// Meant for a simulation without growth history (a scene's solve).
+    pub fn bonded_start(&self) -> Result<Self, SolveError> {
+        let mut other = Self::from_parts(
+            self.model.clone(),
+            self.state.cracks.clone(),
+            self.scratch.xfem.clone(),
+            self.scratch.rebuild_points,
+        )?;
+        other.set_load_factor(self.state.lambda);
+        // closed by the specimen's width: the first friction limits (μ k_N
+        // |g_N| + c_c) lie far above any traction
+        let g_n = -self.model.mesh.width;
+        other.scratch.contact_guess = Some(
+            other
+                .state
+                .faces
+                .iter()
+                .map(|f| FaceState {
+                    state: ContactState::Stick,
+                    g_n,
+                    ..*f
+                })
+                .collect(),
+        );
+        Ok(other)
+    }
+
     /// The states the next contact iteration starts from: the guess left
     /// by the last critical-control trial, or the committed states.
     pub(super) fn initial_contact_states(&mut self) -> Vec<FaceState> {
@@ -123,6 +161,7 @@ impl Simulation {
                 None
             },
             kinks: self.scratch.kinks.clone(),
+            other_solution: None,
         }
     }
 }

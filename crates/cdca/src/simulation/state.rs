@@ -300,7 +300,7 @@ impl Simulation {
 
     /// The simulation of `model.scene` on the discretisation `xfem` of
     /// `cracks`, before any solve.
-    fn from_parts(
+    pub(super) fn from_parts(
         model: Model,
         cracks: Vec<Crack>,
         xfem: Xfem,

@@ -8,7 +8,9 @@
 //! short-crack radius of [`CriterionParams::for_crack`]): at `r_p` the
 //! faces' shear check at the coplanar pair's flaw ends agreed within 5%
 //! and its plane within 8° on 100² to 300² meshes, where 0.3 and 0.6 mm
-//! circles did not (`scripts/kink_vertex.sh`). It is sampled over the
+//! circles did not; the first secondary crack's load and angle agree
+//! within 4% and 2° on 100² to 200² (`the_first_secondary_crack_is_mesh_converged`,
+//! docs/fracture-model.md, *Secondary cracks*). It is sampled over the
 //! kink's open (reflex) side, the arms' directions excluded by
 //! [`ARM_MARGIN_DEG`]: the wedge between a flaw and its wing is shielded by
 //! both, and a crack leaving along an arm would lie on it.

@@ -4,7 +4,7 @@
 //! refreshes it after each piece of solver work.
 
 use cdca::report::{GrowthStepReport, IntactRockReport, LoadCapReport, Outcome, TipReport};
-use cdca::scene::SolverKind;
+use cdca::scene::{Lineage, SolverKind};
 use cdca::{ContactPointView, ContactState, RelaxStatus, ResidualSample, Simulation};
 use egui_plot::PlotPoint;
 
@@ -99,7 +99,7 @@ impl SolutionView {
         self.solver = sim.scene().solver.kind;
         self.rebuild = sim.rebuild_progress();
         self.cracks = sim.cracks();
-        self.secondary = sim.lineage().iter().map(|l| l.drawn == 0).collect();
+        self.secondary = sim.lineage().iter().map(Lineage::is_secondary).collect();
         self.load_factor = sim.load_factor();
         self.outcome = sim.growth_finished();
         self.load_cap = sim.load_cap();

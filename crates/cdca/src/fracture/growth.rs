@@ -50,16 +50,41 @@ pub fn extend(
 ) -> Extension {
     let frame = TipFrame::of(&cracks[c], k);
     let d = frame.global(P2::new(angle.cos(), angle.sin()));
-    let a = frame.origin;
+    extend_from(
+        cracks,
+        Some((c, k)),
+        frame.origin,
+        d,
+        da,
+        width,
+        height,
+        snap,
+    )
+}
+
+/// Where a segment from `a` along the unit direction `d` goes when it
+/// grows by `da` ([`extend`]): the tip `k` of crack `c` when `from` is
+/// `Some((c, k))` (its own segment at that tip is skipped), or the first
+/// segment of a crack starting at `a` (on another crack's kink, which it
+/// does not cross there).
+pub fn extend_from(
+    cracks: &[Crack],
+    from: Option<(usize, usize)>,
+    a: P2,
+    d: P2,
+    da: f64,
+    width: f64,
+    height: f64,
+    snap: f64,
+) -> Extension {
     let reach = da + snap;
     let b = a + reach * d;
     // the first crack crossed (own crack: skip the segment at this tip)
     let mut best: Option<(f64, P2, usize)> = None;
     for (m, other) in cracks.iter().enumerate() {
-        let hit = if m == c {
-            own_crossing(other, k, a, b)
-        } else {
-            first_crossing(other, a, b)
+        let hit = match from {
+            Some((c, k)) if m == c => own_crossing(other, k, a, b),
+            _ => first_crossing(other, a, b),
         };
         if let Some((s, p)) = hit
             && s * reach > 1e-9 * da
@@ -76,7 +101,7 @@ pub fn extend(
         _ if exit < 1.0 => Extension::Boundary(a + exit * (b - a)),
         _ => {
             let p = a + da * d;
-            nearest_other(cracks, c, p)
+            nearest_other(cracks, from.map(|(c, _)| c), p)
                 .filter(|&(q, _)| (q - p).norm() <= snap)
                 .map_or(Extension::Free(p), |(q, m)| Extension::Junction(q, m))
         }
@@ -84,9 +109,9 @@ pub fn extend(
 }
 
 /// The point nearest to `p` on any crack other than `c`, and that crack.
-fn nearest_other(cracks: &[Crack], c: usize, p: P2) -> Option<(P2, usize)> {
+fn nearest_other(cracks: &[Crack], c: Option<usize>, p: P2) -> Option<(P2, usize)> {
     let mut best: Option<(f64, P2, usize)> = None;
-    for (m, other) in cracks.iter().enumerate().filter(|&(m, _)| m != c) {
+    for (m, other) in cracks.iter().enumerate().filter(|&(m, _)| Some(m) != c) {
         for (s, e) in other.segments() {
             let q = s + closest_on_segment(p, s, e) * (e - s);
             let dist = (q - p).norm();
@@ -132,14 +157,7 @@ mod tests {
     use crate::geometry::cracks::TipKind;
 
     fn crack(pts: &[[f64; 2]]) -> Crack {
-        Crack {
-            points: pts.iter().map(|&p| crate::geometry::plane::p2(p)).collect(),
-            tips: [TipKind::Free; 2],
-            friction: 0.0,
-            cohesion: 0.0,
-            kn: 1.0,
-            kt: 1.0,
-        }
+        Crack::bare(pts, [TipKind::Free; 2])
     }
 
     #[test]

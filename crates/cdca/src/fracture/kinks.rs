@@ -229,17 +229,6 @@ fn closed_arm(x: &Xfem, states: &[FaceState], kink: &Kink, reach: f64) -> bool {
 mod tests {
     use super::*;
 
-    fn crack(pts: &[[f64; 2]], tips: [TipKind; 2]) -> Crack {
-        Crack {
-            points: pts.iter().map(|&p| crate::geometry::plane::p2(p)).collect(),
-            tips,
-            friction: 0.0,
-            cohesion: 0.0,
-            kn: 1.0,
-            kt: 1.0,
-        }
-    }
-
     /// A flaw with a wing turned 60° at one end is a kink of 60°; a 20°
     /// bend is not; a vertex a crack has started from is no longer a site.
     /// The open side's bisector points away from both arms, and a
@@ -249,7 +238,7 @@ mod tests {
         let (c, s) = (60f64.to_radians().cos(), 60f64.to_radians().sin());
         // then a 20° bend: to 40° off the flaw
         let (c2, s2) = (40f64.to_radians().cos(), 40f64.to_radians().sin());
-        let flaw = crack(
+        let flaw = Crack::bare(
             &[[-1.0, 0.0], [0.0, 0.0], [c, s], [c + c2, s + s2]],
             [TipKind::Free; 2],
         );
@@ -265,7 +254,7 @@ mod tests {
         assert!((k.half_sector().to_degrees() - 105.0).abs() < 1e-9);
         assert!(k.off_arm_deg(P2::new(1.0, 0.0)).abs() < 1e-9);
         assert!((k.off_arm_deg(P2::new(1.0, -0.2)) + 0.2f64.atan().to_degrees()).abs() < 1e-9);
-        let branch = crack(
+        let branch = Crack::bare(
             &[[0.0, 0.0], [0.5, -0.1]],
             [TipKind::Junction { main: 0 }, TipKind::Free],
         );

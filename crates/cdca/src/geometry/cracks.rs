@@ -136,6 +136,25 @@ impl Crack {
     }
 }
 
+#[cfg(test)]
+impl Crack {
+    /// A crack through `points` with tip kinds `tips` and neutral faces
+    /// (no friction or cohesion, unit stiffness), for the geometry tests.
+    pub(crate) fn bare(points: &[[f64; 2]], tips: [TipKind; 2]) -> Self {
+        Self {
+            points: points
+                .iter()
+                .map(|&p| crate::geometry::plane::p2(p))
+                .collect(),
+            tips,
+            friction: 0.0,
+            cohesion: 0.0,
+            kn: 1.0,
+            kt: 1.0,
+        }
+    }
+}
+
 /// Local frame of a tip: origin at the tip, `e1` along the outward tangent,
 /// `e2 = e1` turned +90°.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -318,14 +337,7 @@ mod tests {
     use super::*;
 
     fn crack(tips: [TipKind; 2]) -> Crack {
-        Crack {
-            points: vec![P2::new(0.0, 0.0), P2::new(1.0, 0.0)],
-            tips,
-            friction: 0.0,
-            cohesion: 0.0,
-            kn: 1.0,
-            kt: 1.0,
-        }
+        Crack::bare(&[[0.0, 0.0], [1.0, 0.0]], tips)
     }
 
     /// A chain from boundary to boundary splits the specimen; a closed loop

@@ -107,9 +107,14 @@ impl Lineage {
         }
     }
 
+    /// Whether the crack started at another crack's kink.
+    pub fn is_secondary(&self) -> bool {
+        self.drawn == 0
+    }
+
     /// The part segment `j` (from point `j` to `j + 1`) belongs to.
     pub fn part_of_segment(&self, j: usize) -> Part {
-        if self.drawn == 0 {
+        if self.is_secondary() {
             Part::Secondary
         } else if j < self.front {
             self.ends[0]

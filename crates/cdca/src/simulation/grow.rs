@@ -9,7 +9,7 @@ use super::state::Simulation;
 use crate::contact::law::{FaceState, carry_over, counts};
 use crate::discretisation::xfem::Reuse;
 use crate::error::SolveError;
-use crate::fracture::growth::{Extension, apply, default_increment, extend};
+use crate::fracture::growth::{Extension, apply, default_increment, extend, extend_from};
 use crate::geometry::cracks::{Crack, TipKind, classify_tips, root, split_specimen};
 use crate::geometry::plane::{P2, distance_to_segment};
 use crate::report::{
@@ -309,14 +309,13 @@ impl Simulation {
             .collect();
         // each secondary crack as a first segment of Δa from its kink
         let first = self.state.cracks.len();
-        let branches: Vec<(Crack, Extension)> = starting
+        let branches: Vec<Extension> = starting
             .iter()
             .map(|k| {
-                let crack = branch(&self.state.cracks[k.crack], k);
-                let mut all = self.state.cracks.clone();
-                all.push(crack.clone());
-                let e = extend(&all, all.len() - 1, 1, 0.0, da, width, height, snap);
-                (crack, e)
+                let d = k.direction_deg.to_radians();
+                let d = P2::new(d.cos(), d.sin());
+                let a = P2::new(k.x, k.y);
+                extend_from(&self.state.cracks, None, a, d, da, width, height, snap)
             })
             .collect();
         let mut moved = Vec::new();
@@ -344,10 +343,19 @@ impl Simulation {
                 k2: t.k2,
             });
         }
-        for (i, ((mut crack, e), k)) in branches.into_iter().zip(starting).enumerate() {
-            let (start, p) = (crack.points[1], e.point());
-            crack.points = vec![start, p];
+        for (i, (e, k)) in branches.into_iter().zip(starting).enumerate() {
+            let (start, p) = (P2::new(k.x, k.y), e.point());
             moved.extend([start, p]);
+            // the faces of the crack it starts on
+            let on = &self.state.cracks[k.crack];
+            let crack = Crack {
+                points: vec![start, p],
+                tips: [TipKind::Junction { main: k.crack }, TipKind::Free],
+                friction: on.friction,
+                cohesion: on.cohesion,
+                kn: on.kn,
+                kt: on.kt,
+            };
             self.state.cracks.push(crack);
             let flaw = self.state.lineage[k.crack].flaw;
             self.state.lineage.push(Lineage::secondary(flaw));
@@ -533,19 +541,6 @@ impl Simulation {
             .iter()
             .map(|c| c.points.iter().map(|p| [p.x, p.y]).collect())
             .collect()
-    }
-}
-
-/// A crack about to start at kink `k` of `on`, with the faces of `on`: a
-/// stub that ends at the vertex, pointing along the kink's direction, so
-/// that [`extend`] grows its tip 1 from the vertex (then the stub goes).
-fn branch(on: &Crack, k: &KinkReport) -> Crack {
-    let d = k.direction_deg.to_radians();
-    let start = P2::new(k.x, k.y);
-    Crack {
-        points: vec![start - 1e-3 * P2::new(d.cos(), d.sin()), start],
-        tips: [TipKind::Junction { main: k.crack }, TipKind::Free],
-        ..on.clone()
     }
 }
 

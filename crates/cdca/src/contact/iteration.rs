@@ -355,7 +355,7 @@ impl ContactSolve {
         };
         let limit_change = relative_change(&slipping(&target), &slipping(limits));
         let residual = outer.map_or(limit_change, |c| c.min(limit_change));
-        let coulomb = coulomb_states(x, u, committed);
+        let coulomb = coulomb_states(x, u, committed, states);
         let unsettled = differ(&signature(&coulomb), sig);
         let settled = unsettled == 0 && residual <= self.params.tolerance;
         if settled {

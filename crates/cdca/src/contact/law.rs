@@ -169,6 +169,50 @@ pub fn friction_limit(crack: &Crack, g_n: f64) -> f64 {
     coulomb_limit(crack, crack.kn * g_n.min(0.0))
 }
 
+/// Relative width of a stick/slip tie: a point whose trial traction is
+/// within `TIE · τ_y` of its friction limit τ_y carries the same traction
+/// (to that width) stuck or slipping, so the outer contact iteration keeps
+/// the state it has ([`keep_at_tie`]). Round-off puts such a point on
+/// either side at each solve: a run's final solve at its last load starts
+/// from slips committed at exactly that load (trial = τ_y to 1e-12), and six
+/// points changed state at every iteration until the 200-iteration cap.
+/// 1e-9 is three orders above that round-off and below the contact
+/// tolerance (1e-8), so a kept state moves the solution by less than the
+/// tolerance the iteration accepts.
+pub const TIE: f64 = 1e-9;
+
+/// `new` (the return mapping at the gaps with friction limit `tau_y`), or,
+/// where it changes `current` between stick and slip at a tie (see
+/// [`TIE`]), `current`'s state with the traction that state carries.
+pub(crate) fn keep_at_tie(
+    crack: &Crack,
+    committed_slip: f64,
+    current: ContactState,
+    new: FaceState,
+    tau_y: f64,
+) -> FaceState {
+    let trial = crack.kt * (new.g_t - committed_slip);
+    let tie = (trial.abs() - tau_y).abs() <= TIE * tau_y;
+    match (current, new.state) {
+        (ContactState::Stick, ContactState::Slip) if tie => FaceState {
+            state: ContactState::Stick,
+            slip: committed_slip,
+            p_t: trial,
+            ..new
+        },
+        (ContactState::Slip, ContactState::Stick) if tie => {
+            let p_t = tau_y * trial.signum();
+            FaceState {
+                state: ContactState::Slip,
+                slip: new.g_t - p_t / crack.kt,
+                p_t,
+                ..new
+            }
+        }
+        _ => new,
+    }
+}
+
 /// The tangential return mapping at the gaps `(g_n, g_t)` with the normal
 /// traction `p_n` and the friction limit `tau_y`: stick while the trial
 /// traction `k_T (g_T − g_T^s)` stays within ±τ_y, else slip at ±τ_y with

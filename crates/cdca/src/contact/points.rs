@@ -4,22 +4,30 @@
 //! the tip slivers that follow their neighbour.
 
 use crate::contact::law::{
-    ContactState, FaceState, friction_limit, gaps, stick_or_slip, update_point,
+    ContactState, FaceState, friction_limit, gaps, keep_at_tie, stick_or_slip, update_point,
 };
 use crate::contact::status::FlipTracker;
 use crate::discretisation::xfem::Xfem;
 use crate::geometry::cracks::Crack;
 
 /// The Coulomb states (the return mapping, [`update_point`]) of every face
-/// point at `u`.
-pub(crate) fn coulomb_states(x: &Xfem, u: &[f64], committed: &[FaceState]) -> Vec<FaceState> {
+/// point at `u`; a point at a stick/slip tie keeps its `current` state
+/// ([`keep_at_tie`]).
+pub(crate) fn coulomb_states(
+    x: &Xfem,
+    u: &[f64],
+    committed: &[FaceState],
+    current: &[FaceState],
+) -> Vec<FaceState> {
     let mut states: Vec<FaceState> = x
         .faces
         .iter()
-        .zip(committed)
-        .map(|(fp, c)| {
+        .zip(committed.iter().zip(current))
+        .map(|(fp, (c, now))| {
             let (gn, gt) = gaps(x, fp, u);
-            update_point(&x.funcs.cracks[fp.crack], c.slip, gn, gt)
+            let crack = &x.funcs.cracks[fp.crack];
+            let new = update_point(crack, c.slip, gn, gt);
+            keep_at_tie(crack, c.slip, now.state, new, friction_limit(crack, gn))
         })
         .collect();
     update_followers(x, u, &mut states);
@@ -93,7 +101,8 @@ pub(crate) fn matrix_kinds(states: &[FaceState]) -> Option<Vec<ContactState>> {
 }
 
 /// Maps every face point by the inner law ([`tresca_point`]) with the
-/// friction limits `limits`; returns how many changed state, each change
+/// friction limits `limits`, a point at a stick/slip tie keeping its state
+/// ([`keep_at_tie`]); returns how many changed state, each change
 /// counted in `tracker` (which only reports them: the line search damps
 /// the cycling).
 pub(crate) fn update_limited(
@@ -113,7 +122,8 @@ pub(crate) fn update_limited(
         }
         let (gn, gt) = gaps(x, fp, u);
         let crack = &x.funcs.cracks[fp.crack];
-        let new = tresca_point(crack, committed[i].slip, gn, gt, limits[i]);
+        let mapped = tresca_point(crack, committed[i].slip, gn, gt, limits[i]);
+        let new = keep_at_tie(crack, committed[i].slip, states[i].state, mapped, limits[i]);
         if new.state != states[i].state {
             changed += 1;
             tracker.flip(i, max_flips);

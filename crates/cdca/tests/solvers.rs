@@ -319,3 +319,30 @@ fn nearly_incompressible_ends_with_an_explicit_status() {
         explicit_status("nu = 0.49", &p, kind, stiff_budget());
     }
 }
+
+/// The direct solver's fill-reducing order (the mesh's nested dissection)
+/// against approximate minimum degree, faer's AMD on the same matrix:
+/// on a 100 × 100 plate with a closed crack at 45° (tips inside
+/// elements) it leaves at least 5% fewer entries in `L` (measured 7.6%;
+/// the flops of the factorisation fall by 28–41%, see the Benchmarks
+/// docs).
+#[test]
+fn nested_dissection_leaves_less_fill_than_amd() {
+    use faer::sparse::linalg::cholesky::{
+        CholeskySymbolicParams, SymmetricOrdering, factorize_symbolic_cholesky,
+    };
+    let scene = closed_scene(100, None);
+    let model = Model::new(scene);
+    let x = model.discretise(model.initial_cracks());
+    let ordered = x.pattern().expect("pattern").ordered();
+    let amd = factorize_symbolic_cholesky(
+        ordered.lower.as_ref(),
+        faer::Side::Lower,
+        SymmetricOrdering::Amd,
+        CholeskySymbolicParams::default(),
+    )
+    .expect("AMD");
+    let (nd, amd) = (ordered.symbolic.len_val(), amd.len_val());
+    println!("L entries: nested dissection {nd}, AMD {amd}");
+    assert!((nd as f64) < 0.95 * amd as f64, "{nd} against AMD's {amd}");
+}

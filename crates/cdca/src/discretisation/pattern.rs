@@ -1,6 +1,6 @@
 //! The sparsity pattern (lower triangle) of one discretisation's stiffness
-//! and its symbolic Cholesky factorisation (AMD ordering, elimination
-//! tree), computed once and reused for every numeric factorisation on that
+//! and its symbolic Cholesky factorisation (in the mesh's nested-dissection
+//! order, [`Mesh::nested_dissection`](crate::geometry::mesh::Mesh::nested_dissection)), computed once and reused for every numeric factorisation on that
 //! discretisation: contact blocks live on enriched elements, whose DOFs are
 //! already coupled, so they never change the pattern.
 //!
@@ -15,9 +15,6 @@
 use std::sync::Arc;
 
 use faer::Side;
-use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::linalg::amd;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
 };
@@ -29,14 +26,6 @@ use crate::error::SolveError;
 /// A local entry of an element matrix that is not assembled (a constrained
 /// DOF, or the upper triangle).
 const SKIP: u32 = u32::MAX;
-
-/// faer's switch from simplicial to supernodal Cholesky: supernodal when
-/// the factorisation's flops per entry of `L` exceed this (faer's
-/// `CHOLESKY_SUPERNODAL_RATIO_FACTOR`, applied here because faer takes
-/// that ratio from the AMD flop count, which it only has when it orders
-/// the matrix itself; given an ordered matrix it would count the flops of
-/// the exact elimination instead, which may choose differently).
-const SUPERNODAL_RATIO: f64 = 40.0;
 
 /// What every factorisation on a pattern shares: the fill-reducing
 /// ordering, the reordered lower triangle and its symbolic factorisation.
@@ -65,11 +54,18 @@ pub struct Pattern {
 }
 
 impl Pattern {
-    /// The pattern of `n` free DOFs coupled element by element: element
-    /// `e`'s DOFs are `dofs[starts[e]..starts[e + 1]]` ([`FIXED`] entries
-    /// are skipped), and [`add`](Self::add) takes the elements by the same
-    /// index.
-    pub fn new(n: usize, dofs: &[u32], starts: &[usize]) -> Result<Self, SolveError> {
+    /// The pattern of `n` free DOFs coupled element by element, in the
+    /// fill-reducing order `perm` (`perm[i]`: the DOF at position `i`):
+    /// element `e`'s DOFs are `dofs[starts[e]..starts[e + 1]]` ([`FIXED`]
+    /// entries are skipped), and [`add`](Self::add) takes the elements by
+    /// the same index.
+    pub fn new(
+        n: usize,
+        dofs: &[u32],
+        starts: &[usize],
+        perm: Vec<usize>,
+    ) -> Result<Self, SolveError> {
+        assert_eq!(perm.len(), n, "an ordering of every DOF");
         let not_pd = |e: FaerError| SolveError::NotPositiveDefinite {
             dofs: n,
             detail: format!("{e:?}"),
@@ -84,25 +80,17 @@ impl Pattern {
                 }
             }
         });
-        let natural = SymbolicSparseColMat::new_checked(n, n, cp, None, ri);
-        let (cp, ri) = (natural.col_ptr(), natural.row_idx());
         if u32::try_from(ri.len()).is_err() {
             return Err(SolveError::NotPositiveDefinite {
                 dofs: n,
                 detail: format!("{} stiffness entries: too many to index", ri.len()),
             });
         }
-        let (mut perm, mut inv) = (vec![0; n], vec![0; n]);
-        let mut mem = MemBuffer::try_new(amd::order_maybe_unsorted_scratch::<usize>(n, ri.len()))
-            .map_err(|_| not_pd(FaerError::OutOfMemory))?;
-        let flops = amd::order_maybe_unsorted(
-            &mut perm,
-            &mut inv,
-            natural.as_ref(),
-            amd::Control::default(),
-            MemStack::new(&mut mem),
-        )
-        .map_err(not_pd)?;
+        let (cp, ri) = (cp.as_slice(), ri.as_slice());
+        let mut inv = vec![0; n];
+        for (i, &d) in perm.iter().enumerate() {
+            inv[d] = i;
+        }
         // the reordered matrix: its upper triangle (unsorted) for the
         // symbolic analysis, and the transpose, its lower triangle (sorted),
         // for the factorisations
@@ -114,18 +102,9 @@ impl Pattern {
         let upper =
             SymbolicSparseColMatRef::new_unsorted_checked(n, n, &upper_ptr, None, &upper_rows);
         let lower = SymbolicSparseColMat::new_checked(n, n, lower_ptr, None, lower_rows);
-        // faer's choice between simplicial and supernodal, as when it orders:
-        // AMD's divisions are the entries of L below the diagonal
-        let l_nnz = flops.n_div + n as f64;
-        let supernodal = (flops.n_div + flops.n_mult_subs_ldl) / l_nnz > SUPERNODAL_RATIO;
-        let params = CholeskySymbolicParams {
-            supernodal_flop_ratio_threshold: if supernodal {
-                SupernodalThreshold::FORCE_SUPERNODAL
-            } else {
-                SupernodalThreshold::FORCE_SIMPLICIAL
-            },
-            ..Default::default()
-        };
+        // faer's choice between simplicial and supernodal, from the flops
+        // of this elimination
+        let params = CholeskySymbolicParams::default();
         let symbolic =
             factorize_symbolic_cholesky(upper, Side::Upper, SymmetricOrdering::Identity, params)
                 .map_err(not_pd)?;

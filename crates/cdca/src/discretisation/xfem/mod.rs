@@ -275,7 +275,13 @@ impl Xfem {
             dofs.extend_from_slice(&el.dofs);
             starts.push(dofs.len());
         }
-        let p = Pattern::new(self.n_free(), &dofs, &starts)?;
+        let perm = self
+            .mesh
+            .nested_dissection()
+            .into_iter()
+            .flat_map(|node| self.dofs.node_free(node).map(|d| d as usize))
+            .collect();
+        let p = Pattern::new(self.n_free(), &dofs, &starts, perm)?;
         Ok(self.pattern.get_or_init(|| p))
     }
 

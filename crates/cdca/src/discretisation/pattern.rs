@@ -1,6 +1,8 @@
 //! The sparsity pattern (lower triangle) of one discretisation's stiffness
-//! and its symbolic Cholesky factorisation (in the mesh's nested-dissection
-//! order, [`Mesh::nested_dissection`](crate::geometry::mesh::Mesh::nested_dissection)), computed once and reused for every numeric factorisation on that
+//! and its symbolic Cholesky factorisation (in a fill-reducing order the
+//! discretisation gives: the mesh's nested dissection,
+//! [`Mesh::nested_dissection`](crate::geometry::mesh::Mesh::nested_dissection)),
+//! computed once and reused for every numeric factorisation on that
 //! discretisation: contact blocks live on enriched elements, whose DOFs are
 //! already coupled, so they never change the pattern.
 //!

@@ -70,12 +70,12 @@ impl Mesh {
                 out.extend(i.clone().map(|ii| self.node_id(ii, jj)));
             }
         } else if w >= h {
-            let m = (i.start + i.end) / 2;
+            let m = usize::midpoint(i.start, i.end);
             self.dissect(i.start..m, j.clone(), out);
             self.dissect(m + 1..i.end, j.clone(), out);
             out.extend(j.map(|jj| self.node_id(m, jj)));
         } else {
-            let m = (j.start + j.end) / 2;
+            let m = usize::midpoint(j.start, j.end);
             self.dissect(i.clone(), j.start..m, out);
             self.dissect(i.clone(), m + 1..j.end, out);
             out.extend(i.map(|ii| self.node_id(ii, m)));

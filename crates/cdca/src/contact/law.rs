@@ -368,6 +368,36 @@ mod tests {
         }
     }
 
+    /// At a tie (trial traction within `TIE · τ_y` of the limit) a point
+    /// keeps its state, stuck or slipping, with that state's traction;
+    /// beyond it the return mapping decides. Both sides of the limit, both
+    /// signs of the traction.
+    #[test]
+    fn a_point_at_a_stick_slip_tie_keeps_its_state() {
+        let c = crack(0.5, 0.0);
+        let (g_n, slip) = (-2e-5, 1e-7);
+        let tau_y = friction_limit(&c, g_n);
+        for sign in [1.0, -1.0] {
+            for (excess, tie) in [(1e-12, true), (-1e-12, true), (1e-6, false), (-1e-6, false)] {
+                let g_t = slip + sign * tau_y * (1.0 + excess) / c.kt;
+                let mapped = update_point(&c, slip, g_n, g_t);
+                for current in [ContactState::Stick, ContactState::Slip] {
+                    let kept = keep_at_tie(&c, slip, current, mapped, tau_y);
+                    let expected = if tie { current } else { mapped.state };
+                    assert_eq!(kept.state, expected, "{sign} {excess} {current:?}");
+                    let p_t = match kept.state {
+                        ContactState::Stick => c.kt * (g_t - slip),
+                        _ => sign * tau_y,
+                    };
+                    assert!((kept.p_t - p_t).abs() <= 1e-12 * tau_y, "{kept:?}");
+                    assert!((kept.p_t.abs() - tau_y).abs() <= 2e-6 * tau_y);
+                }
+            }
+        }
+        let open = update_point(&c, slip, 1e-9, 0.0);
+        assert_eq!(keep_at_tie(&c, slip, ContactState::Stick, open, 0.0), open);
+    }
+
     /// SPEC §5's μ|p_N| + c_c once |p_N| ≥ c_c; below, the cohesion grows
     /// with the pressure, so the limit is continuous (zero) where a point
     /// opens; without cohesion μ|p_N| everywhere.

@@ -1976,3 +1976,26 @@ fn contact_dots_on_secondary_cracks_are_ringed_in_purple() {
         );
     }
 }
+
+/// A solved scene whose every crack end meets another crack has no tip to
+/// inspect, and the inspector says why.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn the_tip_inspector_says_when_no_crack_end_is_free() {
+    let mut h = harness(no_solver());
+    h.run();
+    h.state_mut().push(Command::OpenSceneText {
+        source: "loop.json".to_owned(),
+        text: crack_loop().to_json().expect("JSON"),
+    });
+    solve_opened(&mut h);
+    let app = h.state();
+    assert!(app.message().is_none(), "{:?}", app.message());
+    assert!(app.is_solved() && !app.specimen_split());
+    assert_eq!(app.scene().cracks.len(), 2);
+    assert!(app.tips().is_empty());
+    h.get_by_label("No free tip: every crack end meets a boundary or another crack.");
+}

@@ -9,7 +9,7 @@ use cdca::scene::SolverKind;
 use egui::Ui;
 use web_time::{Duration, Instant};
 
-pub use crate::canvas::CANVAS_LABEL;
+pub use crate::canvas::{CANVAS_LABEL, SECONDARY_COLOR, SECONDARY_KEY};
 use crate::canvas::{Canvas, CanvasInput, ViewSettings};
 use crate::command::Command;
 use crate::compare::{self, Race};
@@ -243,6 +243,11 @@ impl WorkbenchApp {
     /// solve).
     pub fn contact_states(&self) -> Vec<cdca::ContactState> {
         self.runner.view().contact.iter().map(|c| c.state).collect()
+    }
+    /// The crack-face points shown, with their cracks, positions and
+    /// states (empty before a solve).
+    pub fn contact_points(&self) -> &[cdca::ContactPointView] {
+        &self.runner.view().contact
     }
     /// The free tips of the last solve (SIFs and criterion).
     pub fn tips(&self) -> &[cdca::report::TipReport] {

@@ -1780,3 +1780,222 @@ fn the_workbench_and_the_cli_write_byte_identical_csv() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Every shape the canvas and panels painted in the last frame, nested
+/// lists flattened.
+fn painted(h: &Harness<'_, WorkbenchApp>) -> Vec<egui::Shape> {
+    fn flatten(shape: &egui::Shape, out: &mut Vec<egui::Shape>) {
+        match shape {
+            egui::Shape::Vec(shapes) => shapes.iter().for_each(|s| flatten(s, out)),
+            s => out.push(s.clone()),
+        }
+    }
+    let mut out = Vec::new();
+    for clipped in &h.output().shapes {
+        flatten(&clipped.shape, &mut out);
+    }
+    out
+}
+
+/// The texts painted in the last frame (the canvas's key among them).
+fn painted_texts(h: &Harness<'_, WorkbenchApp>) -> Vec<String> {
+    painted(h)
+        .iter()
+        .filter_map(|s| match s {
+            egui::Shape::Text(t) => Some(t.galley.text().to_owned()),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Polylines painted in the last frame in `colour` (cracks are polylines).
+fn polylines_in(h: &Harness<'_, WorkbenchApp>, colour: egui::Color32) -> usize {
+    painted(h)
+        .iter()
+        .filter(|s| {
+            matches!(s, egui::Shape::Path(p)
+                if p.stroke.color == egui::epaint::ColorMode::Solid(colour))
+        })
+        .count()
+}
+
+/// Solves the scene just opened (asked for: whether an open solves by
+/// itself depends on how long the last solve took) and runs frames until
+/// it is solved (at most 2000).
+fn solve_opened(h: &mut Harness<'_, WorkbenchApp>) {
+    h.state_mut().push(Command::Solve);
+    for _ in 0..2000 {
+        if h.state().is_solved() || h.state().message().is_some() {
+            break;
+        }
+        h.step();
+    }
+    h.run_steps(3);
+}
+
+/// A square loop of two cracks, each bent 90° and ending on the other, in
+/// the 0.3 m plate under biaxial compression (`closed_crack_biaxial.json`)
+/// on a 20 × 20 mesh: every crack end meets the other crack, so no tip is
+/// free. Its faces close (26 stick, 4 slip, 2 open points), the fragment
+/// inside is held by them, and the 90° corners are sharp kinks.
+fn crack_loop() -> cdca::scene::SceneFile {
+    let mut s = cdca::scene::SceneFile::from_json(include_str!(
+        "../assets/scenes/closed_crack_biaxial.json"
+    ))
+    .expect("a bundled scene");
+    (s.mesh.nx, s.mesh.ny) = (20, 20);
+    let flaw = s.cracks[0].clone();
+    s.cracks = [
+        [[0.1, 0.1], [0.2, 0.1], [0.2, 0.2]],
+        [[0.2, 0.2], [0.1, 0.2], [0.1, 0.1]],
+    ]
+    .map(|p| cdca::scene::CrackSpec {
+        points: Some(p.to_vec()),
+        ..flaw.clone()
+    })
+    .to_vec();
+    s
+}
+
+/// [`crack_loop`] grown headless until secondary cracks start (at both
+/// corners, at the second load step), as File ▸ Save writes it: the grown
+/// cracks and `growth.resume`, whose lineage says which are secondary.
+/// Returns the file and that lineage's verdict per crack.
+fn loop_with_secondary_cracks() -> (String, Vec<bool>) {
+    let scene = cdca::scene::Scene::try_from(crack_loop()).expect("a valid scene");
+    let mut sim = cdca::Simulation::new(scene).expect("a simulation");
+    while !sim.lineage().iter().any(cdca::scene::Lineage::is_secondary) {
+        assert!(
+            sim.growth_finished().is_none(),
+            "no secondary crack started"
+        );
+        sim.grow_step().expect("a growth step");
+    }
+    let secondary = sim
+        .lineage()
+        .iter()
+        .map(cdca::scene::Lineage::is_secondary)
+        .collect();
+    (sim.scene().to_json().expect("JSON"), secondary)
+}
+
+/// The canvas key's secondary-crack row follows the scene's cracks, not
+/// the tip markers: a saved run with secondary cracks, reopened and not
+/// solved (no tips), draws them purple and shows the row; the same cracks
+/// without the saved lineage (all drawn flaws) show neither; nor does the
+/// default scene.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn the_key_names_secondary_cracks_exactly_when_the_scene_has_one() {
+    let (saved, secondary) = loop_with_secondary_cracks();
+    let count = secondary.iter().filter(|&&s| s).count();
+    assert!(count > 0, "{secondary:?}");
+    let purple = cdca_workbench::app::SECONDARY_COLOR;
+    let key = cdca_workbench::app::SECONDARY_KEY;
+    let mut h = harness(no_solver());
+    h.run();
+    assert!(!painted_texts(&h).iter().any(|t| t == key));
+    assert_eq!(polylines_in(&h, purple), 0);
+    h.state_mut().push(Command::OpenSceneText {
+        source: "loop_grown.json".to_owned(),
+        text: saved,
+    });
+    h.run();
+    assert!(h.state().message().is_none(), "{:?}", h.state().message());
+    assert!(!h.state().is_solved() && h.state().tips().is_empty());
+    let texts = painted_texts(&h);
+    assert!(texts.iter().any(|t| t == key), "the key row: {texts:?}");
+    assert!(
+        !texts.iter().any(|t| t == "tip grows in tension"),
+        "no tip rows without tip markers: {texts:?}"
+    );
+    assert_eq!(
+        polylines_in(&h, purple),
+        count,
+        "each secondary crack purple"
+    );
+    edit_scene(&mut h, |s| s.growth.resume = None);
+    h.run();
+    assert!(h.state().message().is_none(), "{:?}", h.state().message());
+    assert!(!painted_texts(&h).iter().any(|t| t == key));
+    assert_eq!(polylines_in(&h, purple), 0);
+}
+
+/// The contact dots on a secondary crack are ringed in its purple (closed,
+/// its dots lay close together over the purple line and hid it), and
+/// those on the flaws are not.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn contact_dots_on_secondary_cracks_are_ringed_in_purple() {
+    let (saved, secondary) = loop_with_secondary_cracks();
+    let purple = cdca_workbench::app::SECONDARY_COLOR;
+    let mut h = harness(no_solver());
+    h.run();
+    h.state_mut().push(Command::OpenSceneText {
+        source: "loop_grown.json".to_owned(),
+        text: saved,
+    });
+    solve_opened(&mut h);
+    let app = h.state();
+    assert!(app.is_solved(), "{:?}", app.message());
+    let points = app.contact_points();
+    let on_secondary = |c: &cdca::ContactPointView| secondary[c.crack];
+    assert!(
+        points
+            .iter()
+            .any(|c| on_secondary(c) && c.state != cdca::ContactState::Open),
+        "a closed secondary crack"
+    );
+    assert!(points.iter().any(|c| !on_secondary(c)), "dots on the flaws");
+    let circles: Vec<egui::epaint::CircleShape> = painted(&h)
+        .into_iter()
+        .filter_map(|s| match s {
+            egui::Shape::Circle(c) => Some(c),
+            _ => None,
+        })
+        .collect();
+    for c in points {
+        let at = app.screen_from_world([c.x, c.y]);
+        let ringed = circles
+            .iter()
+            .filter(|d| d.center.distance(at) < 1e-3)
+            .map(|d| d.stroke.width > 0.0 && d.stroke.color == purple)
+            .collect::<Vec<_>>();
+        assert!(
+            ringed.contains(&on_secondary(c)),
+            "the dot at ({}, {}) on crack {}: purple rings {ringed:?}",
+            c.x,
+            c.y,
+            c.crack
+        );
+    }
+}
+
+/// A solved scene whose every crack end meets another crack has no tip to
+/// inspect, and the inspector says why.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn the_tip_inspector_says_when_no_crack_end_is_free() {
+    let mut h = harness(no_solver());
+    h.run();
+    h.state_mut().push(Command::OpenSceneText {
+        source: "loop.json".to_owned(),
+        text: crack_loop().to_json().expect("JSON"),
+    });
+    solve_opened(&mut h);
+    let app = h.state();
+    assert!(app.message().is_none(), "{:?}", app.message());
+    assert!(app.is_solved() && !app.specimen_split());
+    assert_eq!(app.scene().cracks.len(), 2);
+    assert!(app.tips().is_empty());
+    h.get_by_label("No free tip: every crack end meets a boundary or another crack.");
+}

@@ -5,7 +5,7 @@ mod field_mesh;
 mod symbols;
 mod view;
 
-use cdca::scene::SceneFile;
+use cdca::scene::{Lineage, SceneFile};
 use egui::{Align2, Color32, FontId, Key, PointerButton, Pos2, Response, Sense, Stroke, Ui};
 use serde::{Deserialize, Serialize};
 
@@ -15,6 +15,7 @@ use crate::field::{FieldKind, FieldSamples};
 use crate::solution::SolutionView;
 use crate::units;
 use field_mesh::{FieldMesh, MeshKey, paint_legend};
+pub use symbols::{SECONDARY_COLOR, SECONDARY_KEY};
 pub use view::ViewTransform;
 
 /// The accessible name of the canvas (tests find it by this label).
@@ -313,33 +314,35 @@ impl Canvas {
                 .filter(|l| (l - 1.0).abs() > 1e-9);
             symbols::paint_boundary(painter, &view, scene, load_factor);
         }
+        // before a solve (or after an edit) the scene's own cracks, and
+        // which of them are secondary from its saved lineage
         let scene_cracks: Vec<Vec<[f64; 2]>>;
-        let cracks = if input.solution.cracks.is_empty() {
+        let scene_secondary: Vec<bool>;
+        let (cracks, secondary) = if input.solution.cracks.is_empty() {
             let h = scene.element_size();
             scene_cracks = scene.cracks.iter().map(|c| c.polyline(h)).collect();
-            &scene_cracks
+            scene_secondary = secondary_in_scene(scene);
+            (&scene_cracks, &scene_secondary)
         } else {
-            &input.solution.cracks
+            (&input.solution.cracks, &input.solution.secondary)
         };
-        symbols::paint_cracks(
-            painter,
-            &view,
-            cracks,
-            &input.solution.secondary,
-            editor.selected_crack,
-        );
+        symbols::paint_cracks(painter, &view, cracks, secondary, editor.selected_crack);
         if s.show_contact {
             symbols::paint_contact(
                 painter,
                 &view,
                 &input.solution.contact,
+                secondary,
                 s.show_traction_arrows,
             );
         }
         symbols::paint_tips(painter, &view, &input.solution.tips, input.selected_tip);
-        if !input.solution.tips.is_empty() {
-            symbols::paint_tip_key(painter, view.rect, input.solution.secondary.contains(&true));
-        }
+        symbols::paint_key(
+            painter,
+            view.rect,
+            !input.solution.tips.is_empty(),
+            secondary.contains(&true),
+        );
         if editor.tool == Tool::Select {
             symbols::paint_handles(painter, &view, scene, hovered_vertex);
         }
@@ -387,6 +390,19 @@ impl Canvas {
             FontId::monospace(12.0),
             Color32::from_gray(120),
         );
+    }
+}
+
+/// Per crack of `scene`, whether it is a secondary crack, as its saved
+/// growth run's lineage (`growth.resume.lineage`) says; every crack is a
+/// flaw without one, or with one that no longer matches the cracks (as
+/// the simulation reads it).
+fn secondary_in_scene(scene: &SceneFile) -> Vec<bool> {
+    match &scene.growth.resume {
+        Some(r) if r.lineage.len() == scene.cracks.len() => {
+            r.lineage.iter().map(Lineage::is_secondary).collect()
+        }
+        _ => vec![false; scene.cracks.len()],
     }
 }
 

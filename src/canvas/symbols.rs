@@ -258,11 +258,13 @@ pub fn paint_cracks(
 }
 
 /// Contact points coloured by state, and the traction the other face exerts
-/// on the φ > 0 face as arrows (longest arrow 25 points).
+/// on the φ > 0 face as arrows (longest arrow 25 points). `secondary`: per
+/// crack, whether it is a secondary crack (see [`contact_dot`]).
 pub fn paint_contact(
     painter: &Painter,
     view: &ViewTransform,
     contact: &[ContactPointView],
+    secondary: &[bool],
     arrows: bool,
 ) {
     let max_t = contact
@@ -271,7 +273,8 @@ pub fn paint_contact(
         .fold(0.0_f64, f64::max);
     for c in contact {
         let q = view.screen_from_world([c.x, c.y]);
-        painter.circle_filled(q, 2.5, contact_color(c.state));
+        let dot = contact_dot(c.state, secondary.get(c.crack) == Some(&true));
+        painter.circle(q, dot.radius, dot.fill, dot.stroke);
         if arrows && max_t > 0.0 && c.state != ContactState::Open {
             let [nx, ny] = c.normal;
             let tangent = [ny, -nx];
@@ -281,6 +284,39 @@ pub fn paint_contact(
             ];
             let v = view.screen_vec(t).normalized() * (25.0 * (t[0].hypot(t[1]) / max_t) as f32);
             painter.arrow(q, v, Stroke::new(1.2, contact_color(c.state)));
+        }
+    }
+}
+
+/// How one contact point is drawn: a disc in its state's colour.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactDot {
+    /// Radius of the disc, points.
+    pub radius: f32,
+    /// The state's colour ([`contact_color`]).
+    pub fill: Color32,
+    /// The ring around the disc ([`Stroke::NONE`] for none).
+    pub stroke: Stroke,
+}
+
+/// The dot of a contact point in `state`. On a flaw or a wing the dot is
+/// a plain disc over the black crack line; the dots of a closed crack lie
+/// close together and covered a secondary crack's purple line, so on a
+/// secondary crack the disc is smaller and ringed in the crack's purple:
+/// the state still shows inside, and the crack stays purple outside.
+pub fn contact_dot(state: ContactState, secondary: bool) -> ContactDot {
+    let fill = contact_color(state);
+    if secondary {
+        ContactDot {
+            radius: 2.0,
+            fill,
+            stroke: Stroke::new(1.5, SECONDARY_COLOR),
+        }
+    } else {
+        ContactDot {
+            radius: 2.5,
+            fill,
+            stroke: Stroke::NONE,
         }
     }
 }
@@ -305,22 +341,18 @@ pub fn paint_tips(
     }
 }
 
-/// The key to the tip markers, at the canvas's bottom right (the pointer's
-/// position is at the bottom left): each marker's colour is the decision
-/// at that tip, the ring the inspected tip; with `secondary`, the colour of
-/// the secondary cracks too.
-pub fn paint_tip_key(painter: &Painter, canvas: egui::Rect, secondary: bool) {
-    let mut rows = vec![
-        (Key::Tip(tip_color(Mode::Tension)), "tip grows in tension"),
-        (Key::Tip(tip_color(Mode::Shear)), "tip grows in shear"),
-        (Key::Tip(tip_color(Mode::None)), "tip does not grow"),
-        (Key::Ring, "inspected tip"),
-    ];
-    if secondary {
-        rows.push((Key::Line(SECONDARY_COLOR), "secondary crack (from a kink)"));
-    }
+/// The canvas key's secondary-crack row (the UI tests look for it).
+pub const SECONDARY_KEY: &str = "secondary crack (from a kink)";
+
+/// The key at the canvas's bottom right (the pointer's position is at the
+/// bottom left): with `tips` (tip markers shown), each marker's colour is
+/// the decision at that tip and the ring the inspected tip; with
+/// `secondary` (a secondary crack drawn), the secondary cracks' colour.
+/// Nothing without either.
+pub fn paint_key(painter: &Painter, canvas: egui::Rect, tips: bool, secondary: bool) {
+    let rows = key_rows(tips, secondary);
     let font = FontId::proportional(11.0);
-    let mut y = canvas.bottom() - 10.0 - 16.0 * (rows.len() - 1) as f32;
+    let mut y = canvas.bottom() - 10.0 - 16.0 * rows.len().saturating_sub(1) as f32;
     for (key, text) in rows {
         let q = Pos2::new(canvas.right() - 14.0, y);
         match key {
@@ -342,7 +374,26 @@ pub fn paint_tip_key(painter: &Painter, canvas: egui::Rect, secondary: bool) {
     }
 }
 
-/// A row's symbol in [`paint_tip_key`].
+/// The rows of [`paint_key`], top to bottom: the tip markers' with `tips`,
+/// the secondary cracks' with `secondary` (no row for what the canvas does
+/// not show).
+fn key_rows(tips: bool, secondary: bool) -> Vec<(Key, &'static str)> {
+    let mut rows = Vec::new();
+    if tips {
+        rows.extend([
+            (Key::Tip(tip_color(Mode::Tension)), "tip grows in tension"),
+            (Key::Tip(tip_color(Mode::Shear)), "tip grows in shear"),
+            (Key::Tip(tip_color(Mode::None)), "tip does not grow"),
+            (Key::Ring, "inspected tip"),
+        ]);
+    }
+    if secondary {
+        rows.push((Key::Line(SECONDARY_COLOR), SECONDARY_KEY));
+    }
+    rows
+}
+
+/// A row's symbol in [`paint_key`].
 enum Key {
     Tip(Color32),
     Ring,

@@ -54,7 +54,10 @@ fi
 # RUSTC etc. only for this command: exported, they would switch native
 # builds to Debian's compiler.
 step "cargo build --target wasm32-unknown-unknown --profile $profile"
+# -Zlocation-detail=none: panics keep their message but not the source
+# file, line and column (about 0.1 MiB of strings).
 RUSTC=/usr/bin/rustc RUSTDOC=/usr/bin/rustdoc RUSTC_BOOTSTRAP=1 \
+    RUSTFLAGS="-Zlocation-detail=none" \
     CARGO_TARGET_DIR=target-web \
     CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_LINKER="$wasm_ld" \
     /usr/bin/cargo build --target wasm32-unknown-unknown --profile "$profile" \

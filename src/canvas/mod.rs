@@ -387,7 +387,7 @@ impl Canvas {
             pos,
             Align2::LEFT_BOTTOM,
             text,
-            FontId::monospace(12.0),
+            FontId::proportional(12.0),
             Color32::from_gray(120),
         );
     }

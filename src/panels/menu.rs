@@ -279,10 +279,10 @@ pub fn frame_overlay_ui(ui: &Ui, canvas: Rect, stats: &FrameStats) {
     let painter = ui.painter_at(canvas);
     let galley = painter.layout_no_wrap(
         text,
-        egui::FontId::monospace(11.0),
+        egui::FontId::proportional(11.0),
         ui.visuals().strong_text_color(),
     );
-    // the pointer's line is 12 pt monospace, 8 px above the bottom edge
+    // the pointer's line is 12 pt, 8 px above the bottom edge
     let pos = canvas.left_bottom() + egui::vec2(8.0, -30.0 - galley.size().y);
     painter.rect_filled(
         Rect::from_min_size(pos, galley.size()).expand(4.0),

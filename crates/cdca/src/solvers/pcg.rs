@@ -145,7 +145,7 @@ impl<P: Preconditioner> Pcg<P> {
         if pq <= 0.0 {
             return Err(SolveError::NotPositiveDefinite {
                 dofs: op.n,
-                detail: format!("pᵀKp = {pq:.3e} at CG iteration {iteration}"),
+                detail: format!("p^T K p = {pq:.3e} at CG iteration {iteration}"),
             });
         }
         let alpha = self.rz / pq;

@@ -268,6 +268,9 @@ impl Runner {
         self.relaxation_started = false;
         self.growth_ready = false;
         self.view.clear();
+        // a reopened run's steps count before anything is solved, as
+        // `Simulation::steps_done` counts them once it is built
+        self.view.steps_done = scene.growth.resume.as_ref().map_or(0, |r| r.steps);
         self.field.clear();
         self.stale = true;
         self.checked = interactive_mesh(scene)

@@ -569,7 +569,8 @@ fn last_x(csv: &str) -> f64 {
 /// simulation's. Now the status says 2 on opening (with the plots saying
 /// that they start after step 2) and 3 after the step, the x of the
 /// Angles plot's last point (every step of the default scene extends a
-/// tip, so step 3 has an angle).
+/// tip, so step 3 has an angle). The status counts the saved steps before
+/// anything is solved, too.
 #[test]
 #[cfg_attr(
     debug_assertions,
@@ -583,6 +584,18 @@ fn a_reopened_run_counts_its_steps_as_its_plots_place_them() {
     grow(&mut h, "Grow one step");
     assert_eq!(h.state().growth_steps(), 2);
     let saved = h.state().scene_file().expect("the scene saves");
+
+    // before anything is solved (no solver on opening): the status already
+    // counts the saved steps (it said 0 until a solve built the simulation)
+    let mut unsolved = harness(no_solver());
+    unsolved.run_steps(2);
+    unsolved.state_mut().push(Command::OpenSceneText {
+        source: "saved.json".to_owned(),
+        text: saved.clone(),
+    });
+    unsolved.run_steps(2);
+    assert!(!unsolved.state().is_solved());
+    assert_eq!(unsolved.state().growth_steps(), 2, "unsolved, reopened");
 
     let mut reopened = harness(Options::default());
     reopened.run_steps(3);

@@ -1,4 +1,4 @@
-//! Direct solver: sparse Cholesky (faer, AMD ordering) of the assembled
+//! Direct solver: sparse Cholesky (faer, nested-dissection ordering) of the assembled
 //! matrix. The reference for every other solver.
 
 use std::sync::Arc;

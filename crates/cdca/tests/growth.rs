@@ -502,7 +502,7 @@ fn stepped_flaws_coalesce() {
 /// crosses the strip (1 of 8 held-out overlapping pairs links, at step 40;
 /// docs/fracture-model.md, *Secondary cracks*).
 #[test]
-#[ignore = "issue 34: overlapping flaws' secondary cracks leave the strip between them"]
+#[ignore = "issue 34: the strip between overlapping flaws is squeezed, and the shear check into it loses to the one along the flaw by 0-5% (docs/fracture-model.md)"]
 fn overlapping_flaws_coalesce() {
     let text = include_str!("../../../assets/scenes/specimen_two_flaws_overlapping.json");
     let bundled = Scene::from_json(text).expect("scene").into_file();

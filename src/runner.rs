@@ -544,8 +544,7 @@ impl Runner {
         };
         let first = sim.report(0.0);
         let check = std::mem::take(&mut self.check_second_start)
-            && first.failure().is_none()
-            && first.contact.stick + first.contact.slip > 0;
+            && OtherSolutionReport::worth_checking(&first);
         let Some(other) = check.then(|| sim.bonded_start().ok()).flatten() else {
             return false;
         };

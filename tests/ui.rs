@@ -1819,6 +1819,19 @@ fn polylines_in(h: &Harness<'_, WorkbenchApp>, colour: egui::Color32) -> usize {
         .count()
 }
 
+/// The workbench without the solver on opening, with `text` opened as
+/// `source` (a file's name) and nothing solved.
+fn opened_unsolved(source: &str, text: String) -> Harness<'static, WorkbenchApp> {
+    let mut h = harness(no_solver());
+    h.run();
+    h.state_mut().push(Command::OpenSceneText {
+        source: source.to_owned(),
+        text,
+    });
+    h.run();
+    h
+}
+
 /// Solves the scene just opened (asked for: whether an open solves by
 /// itself depends on how long the last solve took) and runs frames until
 /// it is solved (at most 2000).
@@ -1935,12 +1948,7 @@ fn the_key_names_secondary_cracks_exactly_when_the_scene_has_one() {
 fn contact_dots_on_secondary_cracks_are_ringed_in_purple() {
     let (saved, secondary) = loop_with_secondary_cracks();
     let purple = cdca_workbench::app::SECONDARY_COLOR;
-    let mut h = harness(no_solver());
-    h.run();
-    h.state_mut().push(Command::OpenSceneText {
-        source: "loop_grown.json".to_owned(),
-        text: saved,
-    });
+    let mut h = opened_unsolved("loop_grown.json", saved);
     solve_opened(&mut h);
     let app = h.state();
     assert!(app.is_solved(), "{:?}", app.message());
@@ -1985,12 +1993,7 @@ fn contact_dots_on_secondary_cracks_are_ringed_in_purple() {
     ignore = "the solver is slow without optimisation: run with --release"
 )]
 fn the_tip_inspector_says_when_no_crack_end_is_free() {
-    let mut h = harness(no_solver());
-    h.run();
-    h.state_mut().push(Command::OpenSceneText {
-        source: "loop.json".to_owned(),
-        text: crack_loop().to_json().expect("JSON"),
-    });
+    let mut h = opened_unsolved("loop.json", crack_loop().to_json().expect("JSON"));
     solve_opened(&mut h);
     let app = h.state();
     assert!(app.message().is_none(), "{:?}", app.message());

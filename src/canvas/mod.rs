@@ -394,16 +394,19 @@ impl Canvas {
 }
 
 /// Per crack of `scene`, whether it is a secondary crack, as its saved
-/// growth run's lineage (`growth.resume.lineage`) says; every crack is a
-/// flaw without one, or with one that no longer matches the cracks (as
-/// the simulation reads it).
+/// growth run's lineage says (`Resume::lineage_of`, as the simulation
+/// reads it); every crack is a flaw without one.
 fn secondary_in_scene(scene: &SceneFile) -> Vec<bool> {
-    match &scene.growth.resume {
-        Some(r) if r.lineage.len() == scene.cracks.len() => {
-            r.lineage.iter().map(Lineage::is_secondary).collect()
-        }
-        _ => vec![false; scene.cracks.len()],
-    }
+    let n = scene.cracks.len();
+    scene
+        .growth
+        .resume
+        .as_ref()
+        .and_then(|r| r.lineage_of(n))
+        .map_or_else(
+            || vec![false; n],
+            |l| l.iter().map(Lineage::is_secondary).collect(),
+        )
 }
 
 /// A magnification that shows the largest displacement as 5 % of the

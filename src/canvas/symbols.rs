@@ -305,19 +305,15 @@ pub struct ContactDot {
 /// secondary crack the disc is smaller and ringed in the crack's purple:
 /// the state still shows inside, and the crack stays purple outside.
 pub fn contact_dot(state: ContactState, secondary: bool) -> ContactDot {
-    let fill = contact_color(state);
-    if secondary {
-        ContactDot {
-            radius: 2.0,
-            fill,
-            stroke: Stroke::new(1.5, SECONDARY_COLOR),
-        }
+    let (radius, stroke) = if secondary {
+        (2.0, Stroke::new(1.5, SECONDARY_COLOR))
     } else {
-        ContactDot {
-            radius: 2.5,
-            fill,
-            stroke: Stroke::NONE,
-        }
+        (2.5, Stroke::NONE)
+    };
+    ContactDot {
+        radius,
+        fill: contact_color(state),
+        stroke,
     }
 }
 

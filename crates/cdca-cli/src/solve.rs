@@ -21,7 +21,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let mut report = sim.solve()?;
     // where faces close, the same problem from the opposite start: Coulomb
     // friction need not have one solution
-    if report.contact.stick + report.contact.slip > 0 {
+    if OtherSolutionReport::worth_checking(&report) {
         let second = sim.bonded_start()?.solve()?;
         report.other_solution = OtherSolutionReport::between(&report, &second, "bonded");
     }

@@ -59,6 +59,13 @@ pub struct OtherSolutionReport {
 }
 
 impl OtherSolutionReport {
+    /// Whether `first` is worth solving again from bonded faces: it
+    /// converged and some face point is closed (with every face open no
+    /// friction acts, and the problem has one solution).
+    pub fn worth_checking(first: &SolveReport) -> bool {
+        first.failure().is_none() && first.contact.stick + first.contact.slip > 0
+    }
+
     /// `other`, solved from `start`, against `first`: another solution when
     /// both converged and they differ in their contact counts or by more
     /// than [`SAME_SOLUTION_K`] in K; `None` otherwise.

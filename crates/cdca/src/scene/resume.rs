@@ -142,6 +142,13 @@ fn first_increment() -> usize {
 }
 
 impl Resume {
+    /// The saved lineage when it has one entry per crack of a scene of
+    /// `cracks` cracks (a scene saved before lineages were written has
+    /// none: its cracks count as drawn).
+    pub fn lineage_of(&self, cracks: usize) -> Option<&[Lineage]> {
+        (self.lineage.len() == cracks).then_some(self.lineage.as_slice())
+    }
+
     /// Checks the values against a scene of `cracks` cracks (the face
     /// count is checked against the discretisation when a simulation is
     /// built).

@@ -323,9 +323,9 @@ impl Simulation {
             }
             None => vec![FaceState::default(); nf],
         };
-        let lineage = match &resume {
-            Some(r) if r.lineage.len() == cracks.len() => r.lineage.clone(),
-            _ => (0..cracks.len())
+        let lineage = match resume.as_ref().and_then(|r| r.lineage_of(cracks.len())) {
+            Some(saved) => saved.to_vec(),
+            None => (0..cracks.len())
                 .map(|i| Lineage::drawn(i, cracks[i].points.len()))
                 .collect(),
         };

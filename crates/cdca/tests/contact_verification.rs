@@ -554,16 +554,10 @@ fn relaxation_does_not_depend_on_the_slice_size() {
 /// Before the test was taken on the undamped step, this problem was
 /// declared converged after 36 iterations on a step cut to β ≈ 1.5e-5
 /// while that solve still moved `u` by 3.9e-4.
-#[test]
-fn converged_contact_is_a_fixed_point() {
-    use cdca::contact::iteration::{solve_with_contact, solve_with_contact_from};
-    use cdca::contact::law::FaceState;
-    use cdca::contact::status::{ContactParams, relative_change};
-    use cdca::discretisation::model::Model;
-    use cdca::scene::Scene;
-    use cdca::solvers::linear::DirectSolver;
-
-    let scene = Scene::from_json(
+/// A kinked closed flaw in a 30 mm specimen (60 × 60) under 100 MPa
+/// compression: stuck, slipping and open points on one crack.
+fn kinked_flaw_in_compression() -> cdca::scene::Scene {
+    cdca::scene::Scene::from_json(
         r#"{"specimen":{"width":0.03,"height":0.03,"thickness":0.015},"mesh":{"nx":60,"ny":60},
         "material":{"young":4.78e9,"poisson":0.25,"plane":"stress"},
         "cracks":[{"friction":0.6,"points":[[0.013422997823968622,0.007952845776435466],
@@ -576,7 +570,18 @@ fn converged_contact_is_a_fixed_point() {
           "top":{"kind":"traction","normal":-100e6,"shear":0.0},
           "points":[{"at":[0.0,0.0],"fix":"x"}]}}"#,
     )
-    .expect("scene");
+    .expect("scene")
+}
+
+#[test]
+fn converged_contact_is_a_fixed_point() {
+    use cdca::contact::iteration::{solve_with_contact, solve_with_contact_from};
+    use cdca::contact::law::FaceState;
+    use cdca::contact::status::{ContactParams, relative_change};
+    use cdca::discretisation::model::Model;
+    use cdca::solvers::linear::DirectSolver;
+
+    let scene = kinked_flaw_in_compression();
     let model = Model::new(scene.clone());
     let x = model.discretise(model.initial_cracks());
     let f = cdca::discretisation::loads::traction_forces(&x, &scene.boundary);
@@ -616,4 +621,99 @@ fn converged_contact_is_a_fixed_point() {
         .filter(|(a, b)| a.state != b.state)
         .count();
     assert_eq!(changed, 0, "{changed} states changed");
+}
+
+/// Reference: the direct solve of a matrix factorised for the new states.
+/// A contact solve whose states differ from a factorised matrix's at a
+/// few points goes through a low-rank (Woodbury) correction of that
+/// factor instead of a factorisation: the solutions agree to 1e-10
+/// relative (both residuals are ~1e-13). A change of rank above
+/// `MAX_RANK` is factorised.
+#[test]
+fn a_few_changed_contact_states_solve_as_the_factorised_matrix() {
+    use cdca::contact::iteration::solve_with_contact;
+    use cdca::contact::law::{ContactState, FaceState, contact_system};
+    use cdca::contact::status::ContactParams;
+    use cdca::discretisation::model::Model;
+    use cdca::solvers::linear::{DirectSolver, LinearSolver};
+    use cdca::solvers::low_rank::MAX_RANK;
+
+    let scene = kinked_flaw_in_compression();
+    let model = Model::new(scene.clone());
+    let x = model.discretise(model.initial_cracks());
+    let load = cdca::discretisation::loads::traction_forces(&x, &scene.boundary);
+    let committed = vec![FaceState::default(); x.faces.len()];
+    let mut u = vec![0.0; x.n_free()];
+    let (states, info) = solve_with_contact(
+        &x,
+        &load,
+        &committed,
+        &mut u,
+        &mut DirectSolver::default(),
+        ContactParams::default(),
+    )
+    .expect("solve");
+    assert!(info.converged, "{info:?}");
+    let system = |st: &[FaceState]| {
+        let mut f = load.clone();
+        let blocks = contact_system(&x, st, &committed, &mut f);
+        (blocks, f)
+    };
+    // the first `count` closed points (that carry their own terms) turned
+    // to `to`, or from stick to slip and back when `to` is `None`
+    let leading: Vec<usize> = (0..states.len())
+        .filter(|&i| states[i].state != ContactState::Open && x.faces[i].follows.is_none())
+        .collect();
+    let with = |to: Option<ContactState>, count: usize| {
+        let mut st = states.clone();
+        for &i in &leading[..count] {
+            st[i].state = to.unwrap_or(match st[i].state {
+                ContactState::Stick => ContactState::Slip,
+                _ => ContactState::Stick,
+            });
+        }
+        st
+    };
+    let (blocks, f) = system(&states);
+    let mut solver = DirectSolver::default();
+    solver.solve(&x, &blocks, &f, &mut u, true).expect("solve");
+    assert_eq!(solver.correction_rank(), None);
+    for (to, count) in [(None, 1), (None, 3), (Some(ContactState::Open), 2)] {
+        let (blocks, f) = system(&with(to, count));
+        let mut corrected = u.clone();
+        let info = solver
+            .solve(&x, &blocks, &f, &mut corrected, true)
+            .expect("corrected");
+        let rank = solver.correction_rank().unwrap_or(0);
+        assert!(
+            (1..=MAX_RANK).contains(&rank),
+            "{count} points to {to:?}: rank {rank}"
+        );
+        assert!(info.converged, "{info:?}");
+        let mut reference = u.clone();
+        DirectSolver::default()
+            .solve(&x, &blocks, &f, &mut reference, true)
+            .expect("factorised");
+        let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+        let diff: Vec<f64> = corrected
+            .iter()
+            .zip(&reference)
+            .map(|(a, b)| a - b)
+            .collect();
+        let rel = norm(&diff) / norm(&reference);
+        assert!(rel <= 1e-10, "{count} points to {to:?}: differs by {rel:e}");
+    }
+    // every closed point stuck, then open: two penalty terms a point
+    let closed = leading.len();
+    assert!(2 * closed > MAX_RANK, "{closed} closed points");
+    let mut solver = DirectSolver::default();
+    let (blocks, f) = system(&with(Some(ContactState::Stick), closed));
+    solver
+        .solve(&x, &blocks, &f, &mut u, true)
+        .expect("factorised");
+    let (blocks, f) = system(&with(Some(ContactState::Open), closed));
+    solver
+        .solve(&x, &blocks, &f, &mut u, true)
+        .expect("factorised");
+    assert_eq!(solver.correction_rank(), None, "{closed} points opened");
 }

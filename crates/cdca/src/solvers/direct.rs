@@ -1,5 +1,7 @@
 //! Direct solver: sparse Cholesky (faer, nested-dissection ordering) of the assembled
-//! matrix. The reference for every other solver.
+//! matrix, corrected by low rank when only a few contact states changed
+//! ([`low_rank`](crate::solvers::low_rank)). The reference for every other
+//! solver.
 
 use std::sync::Arc;
 
@@ -13,6 +15,7 @@ use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::pattern::{Ordered, Pattern};
 use crate::discretisation::xfem::{NOT_INTEGRATED, REGULAR, Xfem};
 use crate::error::SolveError;
+use crate::solvers::low_rank::{Correction, MAX_RANK, Terms};
 
 /// A factorised stiffness matrix, reusable for several right-hand sides.
 pub struct Factor {
@@ -23,6 +26,11 @@ pub struct Factor {
     l: Vec<f64>,
     /// The contact blocks assembled into it.
     blocks: Vec<ElementBlock>,
+    /// Regular elements: the pattern's index of enriched element `s` is
+    /// `regular + s`.
+    regular: usize,
+    /// When set, the factor solves the matrix with these blocks instead.
+    correction: Option<Correction>,
 }
 
 impl Factor {
@@ -34,6 +42,8 @@ impl Factor {
             a: Vec::new(),
             l: Vec::new(),
             blocks: Vec::new(),
+            regular: 0,
+            correction: None,
         };
         factor.refactor(x, extra)
     }
@@ -62,6 +72,8 @@ impl Factor {
         self.factorise()?;
         self.blocks.clear();
         self.blocks.extend_from_slice(extra);
+        self.regular = e;
+        self.correction = None;
         Ok(self)
     }
 
@@ -95,25 +107,86 @@ impl Factor {
         Ok(())
     }
 
-    /// Whether this is the factor of `K` plus `blocks` on the discretisation
-    /// that owns `pattern` (whose stiffness never changes once built).
-    pub fn is_of(&self, pattern: &Pattern, blocks: &[ElementBlock]) -> bool {
-        Arc::ptr_eq(&self.ordered, pattern.ordered()) && self.blocks == blocks
+    /// Whether this factor solves `K` plus `blocks` on the discretisation
+    /// that owns `pattern` (whose stiffness never changes once built),
+    /// factorised or through its correction; the factorised matrix drops
+    /// the correction.
+    pub fn select(&mut self, pattern: &Pattern, blocks: &[ElementBlock]) -> bool {
+        if !Arc::ptr_eq(&self.ordered, pattern.ordered()) {
+            return false;
+        }
+        if self.blocks == blocks {
+            self.correction = None;
+            return true;
+        }
+        self.correction.as_ref().is_some_and(|c| c.blocks == blocks)
     }
 
-    /// Solves `K u = f`.
-    pub fn solve(&self, f: &[f64]) -> Result<Vec<f64>, SolveError> {
+    /// The change from the factorised matrix to `K` plus `blocks` on `x`
+    /// as rank-one terms, when `x` is this factor's discretisation and the
+    /// rank is at most [`MAX_RANK`].
+    pub fn difference(&self, x: &Xfem, blocks: &[ElementBlock]) -> Option<Terms> {
+        let pattern = x.pattern().ok()?;
+        if !Arc::ptr_eq(&self.ordered, pattern.ordered()) {
+            return None;
+        }
+        Terms::between(x, &self.ordered.inv, &self.blocks, blocks, MAX_RANK)
+    }
+
+    /// Makes this factor solve `K` plus `blocks` by the correction `terms`
+    /// ([`difference`](Self::difference)): `false` (and no change) when
+    /// the corrected matrix is singular.
+    pub fn correct(&mut self, x: &Xfem, terms: Terms, blocks: &[ElementBlock]) -> bool {
+        let Ok(pattern) = x.pattern() else {
+            return false;
+        };
+        let n = self.ordered.perm.len();
+        let regular = self.regular;
+        let correction = Correction::new(
+            n,
+            terms,
+            blocks,
+            &self.a,
+            |slot, d, vals| pattern.add(regular + slot, d.as_slice(), vals),
+            |z, r| self.solve_factorised(z, r),
+        );
+        self.correction = correction;
+        self.correction.is_some()
+    }
+
+    /// The rank of the correction in use, if any.
+    pub fn correction_rank(&self) -> Option<usize> {
+        self.correction.as_ref().map(Correction::rank)
+    }
+
+    /// Solves the factorised matrix for the `r` reordered columns of `y`
+    /// (column-major) in place.
+    fn solve_factorised(&self, y: &mut [f64], r: usize) {
         let o = &*self.ordered;
         let n = o.perm.len();
-        let mut y: Vec<f64> = o.perm.iter().map(|&d| f[d]).collect();
         let par = get_global_parallelism();
-        let mut mem = MemBuffer::new(o.symbolic.solve_in_place_scratch::<f64>(1, par));
+        let mut mem = MemBuffer::new(o.symbolic.solve_in_place_scratch::<f64>(r, par));
         LltRef::new(&o.symbolic, &self.l).solve_in_place_with_conj(
             Conj::No,
-            MatMut::from_column_major_slice_mut(&mut y, n, 1),
+            MatMut::from_column_major_slice_mut(y, n, r),
             par,
             MemStack::new(&mut mem),
         );
+    }
+
+    /// The values of the matrix this factor solves.
+    fn values(&self) -> &[f64] {
+        self.correction.as_ref().map_or(&self.a, |c| &c.a)
+    }
+
+    /// Solves `K u = f` (`K`: the matrix this factor solves).
+    pub fn solve(&self, f: &[f64]) -> Result<Vec<f64>, SolveError> {
+        let o = &*self.ordered;
+        let mut y: Vec<f64> = o.perm.iter().map(|&d| f[d]).collect();
+        self.solve_factorised(&mut y, 1);
+        if let Some(c) = &self.correction {
+            c.apply(&mut y);
+        }
         let u: Vec<f64> = o.inv.iter().map(|&i| y[i]).collect();
         if let Some(i) = u.iter().position(|v| !v.is_finite()) {
             return Err(SolveError::NonFinite {
@@ -136,12 +209,13 @@ impl Factor {
     pub fn residual(&self, f: &[f64], u: &[f64], r: &mut [f64]) {
         let o = &*self.ordered;
         let (col_ptr, row_idx) = (o.lower.col_ptr(), o.lower.row_idx());
+        let vals = self.values();
         let v: Vec<f64> = o.perm.iter().map(|&d| u[d]).collect();
         let mut rp: Vec<f64> = o.perm.iter().map(|&d| f[d]).collect();
         for (c, &vc) in v.iter().enumerate() {
             let column = col_ptr[c]..col_ptr[c + 1];
             let mut sum = 0.0;
-            for (&i, &a) in row_idx[column.clone()].iter().zip(&self.a[column]) {
+            for (&i, &a) in row_idx[column.clone()].iter().zip(&vals[column]) {
                 rp[i] -= a * vc;
                 if i != c {
                     sum += a * v[i];

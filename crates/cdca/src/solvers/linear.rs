@@ -96,9 +96,21 @@ const KEPT_FACTORS: usize = 2;
 /// take to meet [`DIRECT_TOLERANCE`].
 pub const MAX_REFINEMENTS: usize = 3;
 
+/// The true relative residual a solve through a low-rank correction must
+/// reach, by refinement, or the matrix is factorised after all: near the
+/// residual of a factorised matrix's solve, so that a correction gives the
+/// solution a factorisation would to well below the tolerances that read
+/// it.
+pub const CORRECTED_TOLERANCE: f64 = 1e-12;
+
 /// Sparse Cholesky, refactorised only when the matrix changed (the
 /// symbolic factorisation is the discretisation's, computed once), and not
-/// even then when it is the matrix of a kept factor. One
+/// even then when it is the matrix of a kept factor or differs from one by
+/// contact blocks of rank at most
+/// [`MAX_RANK`](crate::solvers::low_rank::MAX_RANK) (a few points changed
+/// state: solved through a low-rank correction of that factor, checked
+/// against [`CORRECTED_TOLERANCE`], and factorised after all where the
+/// correction misses it). One
 /// [`run`](LinearSolver::run) is the triangular solves and, while the true
 /// relative residual ‖f − K u‖/‖f‖ is above [`DIRECT_TOLERANCE`] and falls,
 /// up to [`MAX_REFINEMENTS`] steps of iterative refinement; the solve has
@@ -117,6 +129,74 @@ pub struct DirectSolver {
     setup_seconds: f64,
 }
 
+impl DirectSolver {
+    /// The rank of the low-rank correction the current solve goes
+    /// through (`None`: a factorised matrix, or nothing started).
+    pub fn correction_rank(&self) -> Option<usize> {
+        self.factors.first().and_then(Factor::correction_rank)
+    }
+
+    /// Makes a kept factor on `x` solve `K` plus `blocks` through a
+    /// low-rank correction (the one needing the lowest rank, at most
+    /// [`MAX_RANK`](crate::solvers::low_rank::MAX_RANK)); its index.
+    fn corrected(&mut self, x: &Xfem, blocks: &[ElementBlock]) -> Option<usize> {
+        let (i, terms) = self
+            .factors
+            .iter()
+            .enumerate()
+            .filter_map(|(i, k)| k.difference(x, blocks).map(|t| (i, t)))
+            .min_by_key(|(_, t)| t.rank())?;
+        self.factors[i].correct(x, terms, blocks).then_some(i)
+    }
+
+    /// Factorises `K` plus `blocks` as the current factor, in the oldest
+    /// kept factor's storage when all are kept (dropped if this fails).
+    fn refactor(&mut self, x: &Xfem, blocks: &[ElementBlock]) -> Result<(), SolveError> {
+        let oldest = (self.factors.len() >= KEPT_FACTORS)
+            .then(|| self.factors.pop())
+            .flatten();
+        let factor = match oldest {
+            Some(old) => old.refactor(x, blocks)?,
+            None => Factor::new(x, blocks)?,
+        };
+        self.factors.insert(0, factor);
+        Ok(())
+    }
+
+    /// The current factor's solution of `f`, refined while the true
+    /// relative residual is above its tolerance ([`DIRECT_TOLERANCE`], or
+    /// [`CORRECTED_TOLERANCE`] through a correction) and falls: the
+    /// solution, its residual and the refinements taken.
+    fn refined(&self) -> Result<(Vec<f64>, f64, usize), SolveError> {
+        let factor = self
+            .factors
+            .first()
+            .expect("a direct solve is started before it runs");
+        let tolerance = if factor.correction_rank().is_some() {
+            CORRECTED_TOLERANCE
+        } else {
+            DIRECT_TOLERANCE
+        };
+        let mut u = factor.solve(&self.f)?;
+        let mut residual = factor.relative_residual(&self.f, &u);
+        let mut refinements = 0;
+        while residual > tolerance && refinements < MAX_REFINEMENTS {
+            let mut r = vec![0.0; u.len()];
+            factor.residual(&self.f, &u, &mut r);
+            let du = factor.solve(&r)?;
+            let refined: Vec<f64> = u.iter().zip(&du).map(|(a, b)| a + b).collect();
+            let after = factor.relative_residual(&self.f, &refined);
+            refinements += 1;
+            if after >= residual || after.is_nan() {
+                break;
+            }
+            u = refined;
+            residual = after;
+        }
+        Ok((u, residual, refinements))
+    }
+}
+
 impl LinearSolver for DirectSolver {
     fn name(&self) -> &'static str {
         "direct"
@@ -133,18 +213,16 @@ impl LinearSolver for DirectSolver {
         let clock = Instant::now();
         if matrix_changed || self.factors.is_empty() {
             let pattern = x.pattern()?;
-            if let Some(i) = self.factors.iter().position(|k| k.is_of(pattern, blocks)) {
+            if let Some(i) = self
+                .factors
+                .iter_mut()
+                .position(|k| k.select(pattern, blocks))
+            {
+                self.factors[..=i].rotate_right(1);
+            } else if let Some(i) = self.corrected(x, blocks) {
                 self.factors[..=i].rotate_right(1);
             } else {
-                // in the oldest one's storage (dropped if this fails)
-                let oldest = (self.factors.len() >= KEPT_FACTORS)
-                    .then(|| self.factors.pop())
-                    .flatten();
-                let factor = match oldest {
-                    Some(old) => old.refactor(x, blocks)?,
-                    None => Factor::new(x, blocks)?,
-                };
-                self.factors.insert(0, factor);
+                self.refactor(x, blocks)?;
             }
         }
         self.f.clear();
@@ -159,34 +237,26 @@ impl LinearSolver for DirectSolver {
 
     fn run(
         &mut self,
-        _x: &Xfem,
-        _blocks: &[ElementBlock],
+        x: &Xfem,
+        blocks: &[ElementBlock],
         max_iterations: usize,
     ) -> Result<RelaxStatus, SolveError> {
         if self.status.finished || max_iterations == 0 {
             return Ok(self.status);
         }
         let clock = Instant::now();
-        let factor = self
-            .factors
-            .first()
-            .expect("a direct solve is started before it runs");
-        let mut u = factor.solve(&self.f)?;
-        let mut residual = factor.relative_residual(&self.f, &u);
-        let mut refinements = 0;
-        while residual > DIRECT_TOLERANCE && refinements < MAX_REFINEMENTS {
-            let mut r = vec![0.0; u.len()];
-            factor.residual(&self.f, &u, &mut r);
-            let du = factor.solve(&r)?;
-            let refined: Vec<f64> = u.iter().zip(&du).map(|(a, b)| a + b).collect();
-            let after = factor.relative_residual(&self.f, &refined);
-            refinements += 1;
-            if after >= residual || after.is_nan() {
-                break;
-            }
-            u = refined;
-            residual = after;
+        let mut solved = self.refined();
+        let missed = match &solved {
+            Ok((_, residual, _)) => residual.is_nan() || *residual > CORRECTED_TOLERANCE,
+            Err(_) => true,
+        };
+        if missed && self.correction_rank().is_some() {
+            // the correction lost too much to round-off (or the corrected
+            // matrix is singular): factorise
+            self.refactor(x, blocks)?;
+            solved = self.refined();
         }
+        let (u, residual, refinements) = solved?;
         self.u = u;
         self.status = RelaxStatus {
             iterations: 1 + refinements,

@@ -14,6 +14,7 @@ pub mod choice;
 pub mod direct;
 pub mod element_op;
 pub mod linear;
+pub mod low_rank;
 pub mod multigrid;
 pub mod pcg;
 pub mod relaxation;

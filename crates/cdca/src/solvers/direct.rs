@@ -31,6 +31,9 @@ pub struct Factor {
     regular: usize,
     /// When set, the factor solves the matrix with these blocks instead.
     correction: Option<Correction>,
+    /// The relative residual the factorised matrix's last solve reached
+    /// (0 before one).
+    floor: f64,
 }
 
 impl Factor {
@@ -44,6 +47,7 @@ impl Factor {
             blocks: Vec::new(),
             regular: 0,
             correction: None,
+            floor: 0.0,
         };
         factor.refactor(x, extra)
     }
@@ -74,6 +78,7 @@ impl Factor {
         self.blocks.extend_from_slice(extra);
         self.regular = e;
         self.correction = None;
+        self.floor = 0.0;
         Ok(self)
     }
 
@@ -152,6 +157,19 @@ impl Factor {
         );
         self.correction = correction;
         self.correction.is_some()
+    }
+
+    /// The relative residual the factorised matrix's last solve reached:
+    /// the round-off floor a solve through a correction is held to.
+    pub fn floor(&self) -> f64 {
+        self.floor
+    }
+
+    /// Records the relative residual of a solve of the factorised matrix.
+    pub fn set_floor(&mut self, residual: f64) {
+        if residual.is_finite() {
+            self.floor = residual;
+        }
     }
 
     /// The rank of the correction in use, if any.

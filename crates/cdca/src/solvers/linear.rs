@@ -97,11 +97,16 @@ const KEPT_FACTORS: usize = 2;
 pub const MAX_REFINEMENTS: usize = 3;
 
 /// The true relative residual a solve through a low-rank correction must
-/// reach, by refinement, or the matrix is factorised after all: near the
-/// residual of a factorised matrix's solve, so that a correction gives the
-/// solution a factorisation would to well below the tolerances that read
-/// it.
+/// reach, by refinement, or the matrix is factorised after all: 1e-12, or
+/// [`CORRECTED_SLACK`] times the residual its factor's own matrix was
+/// solved to if that is larger (the round-off floor grows with the mesh:
+/// 2.5–9e-13 at 100 × 100, 1.4e-12 at 300 × 300; a corrected solve
+/// reaches the same floor). So a correction gives the solution a
+/// factorisation would, to well below the tolerances that read it.
 pub const CORRECTED_TOLERANCE: f64 = 1e-12;
+
+/// See [`CORRECTED_TOLERANCE`].
+pub const CORRECTED_SLACK: f64 = 10.0;
 
 /// Sparse Cholesky, refactorised only when the matrix changed (the
 /// symbolic factorisation is the discretisation's, computed once), and not
@@ -163,17 +168,25 @@ impl DirectSolver {
         Ok(())
     }
 
+    /// The residual a solve through the current factor's correction must
+    /// reach ([`CORRECTED_TOLERANCE`]).
+    fn corrected_tolerance(&self) -> f64 {
+        let floor = self.factors.first().map_or(0.0, Factor::floor);
+        CORRECTED_TOLERANCE.max(CORRECTED_SLACK * floor)
+    }
+
     /// The current factor's solution of `f`, refined while the true
     /// relative residual is above its tolerance ([`DIRECT_TOLERANCE`], or
-    /// [`CORRECTED_TOLERANCE`] through a correction) and falls: the
-    /// solution, its residual and the refinements taken.
+    /// [`corrected_tolerance`](Self::corrected_tolerance) through a
+    /// correction) and falls: the solution, its residual and the
+    /// refinements taken.
     fn refined(&self) -> Result<(Vec<f64>, f64, usize), SolveError> {
         let factor = self
             .factors
             .first()
             .expect("a direct solve is started before it runs");
         let tolerance = if factor.correction_rank().is_some() {
-            CORRECTED_TOLERANCE
+            self.corrected_tolerance()
         } else {
             DIRECT_TOLERANCE
         };
@@ -246,8 +259,9 @@ impl LinearSolver for DirectSolver {
         }
         let clock = Instant::now();
         let mut solved = self.refined();
+        let tolerance = self.corrected_tolerance();
         let missed = match &solved {
-            Ok((_, residual, _)) => residual.is_nan() || *residual > CORRECTED_TOLERANCE,
+            Ok((_, residual, _)) => residual.is_nan() || *residual > tolerance,
             Err(_) => true,
         };
         if missed && self.correction_rank().is_some() {
@@ -257,6 +271,9 @@ impl LinearSolver for DirectSolver {
             solved = self.refined();
         }
         let (u, residual, refinements) = solved?;
+        if self.correction_rank().is_none() {
+            self.factors[0].set_floor(residual);
+        }
         self.u = u;
         self.status = RelaxStatus {
             iterations: 1 + refinements,

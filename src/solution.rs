@@ -4,7 +4,7 @@
 //! refreshes it after each piece of solver work.
 
 use cdca::report::{GrowthStepReport, IntactRockReport, LoadCapReport, Outcome, TipReport};
-use cdca::scene::{Lineage, SolverKind};
+use cdca::scene::SolverKind;
 use cdca::{ContactPointView, ContactState, RelaxStatus, ResidualSample, Simulation};
 use egui_plot::PlotPoint;
 
@@ -23,8 +23,9 @@ pub struct SolutionView {
     pub live: bool,
     /// Crack polylines as simulated (grown segments included), m.
     pub cracks: Vec<Vec<[f64; 2]>>,
-    /// Per crack: started at another crack's kink (a secondary crack).
-    pub secondary: Vec<bool>,
+    /// Per crack, per segment of its polyline: part of a secondary crack
+    /// (one started at a kink, or grown from a flaw's end first in shear).
+    pub secondary: Vec<Vec<bool>>,
     /// Every free tip after the last solve.
     pub tips: Vec<TipReport>,
     pub contact: Vec<ContactPointView>,
@@ -99,7 +100,12 @@ impl SolutionView {
         self.solver = sim.scene().solver.kind;
         self.rebuild = sim.rebuild_progress();
         self.cracks = sim.cracks();
-        self.secondary = sim.lineage().iter().map(Lineage::is_secondary).collect();
+        self.secondary = sim
+            .lineage()
+            .iter()
+            .zip(&self.cracks)
+            .map(|(l, c)| l.secondary_segments(c.len()))
+            .collect();
         self.load_factor = sim.load_factor();
         self.outcome = sim.growth_finished();
         self.load_cap = sim.load_cap();

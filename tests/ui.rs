@@ -1985,6 +1985,123 @@ fn contact_dots_on_secondary_cracks_are_ringed_in_purple() {
     }
 }
 
+/// A flaw's end that grew first in shear is a secondary crack (the
+/// lineage's part, as the growth report names it): the canvas draws that
+/// segment purple and the flaw and the wing at its other end black,
+/// before a solve and after one, and rings in purple exactly the contact
+/// dots on that segment.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn a_flaw_end_grown_in_shear_is_drawn_as_a_secondary_crack() {
+    use cdca::scene::{Lineage, Part, Resume};
+    let purple = cdca_workbench::app::SECONDARY_COLOR;
+    let mut scene = harness(no_solver()).state().scene().clone();
+    let flaw = scene.cracks[0].points.clone().expect("a polyline flaw");
+    let (a, b) = (flaw[0], flaw[flaw.len() - 1]);
+    // 1.2 mm on along the flaw at its first end (shear), a wing at 70° at
+    // its second
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len = dx.hypot(dy);
+    let along = [a[0] - 1.2e-3 * dx / len, a[1] - 1.2e-3 * dy / len];
+    let turn = 70f64.to_radians();
+    let wing = [
+        b[0] + 1.2e-3 * (dx * turn.cos() - dy * turn.sin()) / len,
+        b[1] + 1.2e-3 * (dx * turn.sin() + dy * turn.cos()) / len,
+    ];
+    let points: Vec<[f64; 2]> = std::iter::once(along)
+        .chain(flaw.iter().copied())
+        .chain(std::iter::once(wing))
+        .collect();
+    scene.cracks[0].points = Some(points.clone());
+    // a saved run carries its faces' states: all open here
+    let faces = cdca::Simulation::new(cdca::scene::Scene::try_from(scene.clone()).expect("valid"))
+        .expect("a simulation")
+        .contact_points()
+        .len();
+    scene.growth.resume = Some(Resume {
+        steps: 2,
+        load_factor: 1.0,
+        increment: 1,
+        growths_here: 0,
+        faces: vec![[0.0; 6]; faces],
+        grown: Vec::new(),
+        lineage: vec![Lineage {
+            flaw: 0,
+            front: 1,
+            drawn: flaw.len(),
+            ends: [Part::Secondary, Part::Wing],
+        }],
+    });
+    let mut h = opened_unsolved("sheared_end.json", scene.to_json().expect("JSON"));
+    assert!(h.state().message().is_none(), "{:?}", h.state().message());
+    let purple_paths = |h: &Harness<'_, WorkbenchApp>| -> Vec<Vec<Pos2>> {
+        painted(h)
+            .into_iter()
+            .filter_map(|s| match s {
+                egui::Shape::Path(p)
+                    if p.stroke.color == egui::epaint::ColorMode::Solid(purple) =>
+                {
+                    Some(p.points)
+                }
+                _ => None,
+            })
+            .collect()
+    };
+    let secondary_segment = |h: &Harness<'_, WorkbenchApp>| {
+        vec![
+            h.state().screen_from_world(points[0]),
+            h.state().screen_from_world(points[1]),
+        ]
+    };
+    for solved in [false, true] {
+        if solved {
+            solve_opened(&mut h);
+            assert!(h.state().is_solved(), "{:?}", h.state().message());
+        }
+        assert_eq!(
+            purple_paths(&h),
+            vec![secondary_segment(&h)],
+            "solved {solved}: the sheared end alone purple"
+        );
+    }
+    // the dots: ringed exactly on the sheared end's segment
+    let app = h.state();
+    let on_end = |c: &cdca::ContactPointView| {
+        let (p, q) = (points[0], points[1]);
+        let d = [q[0] - p[0], q[1] - p[1]];
+        let t = ((c.x - p[0]) * d[0] + (c.y - p[1]) * d[1]) / (d[0] * d[0] + d[1] * d[1]);
+        let off = (c.x - p[0] - t * d[0]).hypot(c.y - p[1] - t * d[1]);
+        (0.0..=1.0).contains(&t) && off < 1e-9
+    };
+    let points_here = app.contact_points();
+    assert!(points_here.iter().any(on_end), "dots on the sheared end");
+    assert!(points_here.iter().any(|c| !on_end(c)), "dots on the flaw");
+    let circles: Vec<egui::epaint::CircleShape> = painted(&h)
+        .into_iter()
+        .filter_map(|s| match s {
+            egui::Shape::Circle(c) => Some(c),
+            _ => None,
+        })
+        .collect();
+    for c in points_here {
+        let at = app.screen_from_world([c.x, c.y]);
+        let ringed: Vec<bool> = circles
+            .iter()
+            .filter(|d| d.center.distance(at) < 1e-3)
+            .map(|d| d.stroke.width > 0.0 && d.stroke.color == purple)
+            .collect();
+        assert!(
+            ringed.contains(&on_end(c)),
+            "the dot at ({}, {}): purple rings {ringed:?}",
+            c.x,
+            c.y
+        );
+    }
+}
+
 /// A solved scene whose every crack end meets another crack has no tip to
 /// inspect, and the inspector says why.
 #[test]

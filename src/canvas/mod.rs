@@ -5,7 +5,7 @@ mod field_mesh;
 mod symbols;
 mod view;
 
-use cdca::scene::{Lineage, SceneFile};
+use cdca::scene::SceneFile;
 use egui::{Align2, Color32, FontId, Key, PointerButton, Pos2, Response, Sense, Stroke, Ui};
 use serde::{Deserialize, Serialize};
 
@@ -317,11 +317,11 @@ impl Canvas {
         // before a solve (or after an edit) the scene's own cracks, and
         // which of them are secondary from its saved lineage
         let scene_cracks: Vec<Vec<[f64; 2]>>;
-        let scene_secondary: Vec<bool>;
+        let scene_secondary: Vec<Vec<bool>>;
         let (cracks, secondary) = if input.solution.cracks.is_empty() {
             let h = scene.element_size();
             scene_cracks = scene.cracks.iter().map(|c| c.polyline(h)).collect();
-            scene_secondary = secondary_in_scene(scene);
+            scene_secondary = secondary_in_scene(scene, &scene_cracks);
             (&scene_cracks, &scene_secondary)
         } else {
             (&input.solution.cracks, &input.solution.secondary)
@@ -332,6 +332,7 @@ impl Canvas {
                 painter,
                 &view,
                 &input.solution.contact,
+                cracks,
                 secondary,
                 s.show_traction_arrows,
             );
@@ -341,7 +342,7 @@ impl Canvas {
             painter,
             view.rect,
             !input.solution.tips.is_empty(),
-            secondary.contains(&true),
+            secondary.iter().flatten().any(|&s| s),
         );
         if editor.tool == Tool::Select {
             symbols::paint_handles(painter, &view, scene, hovered_vertex);
@@ -396,17 +397,20 @@ impl Canvas {
 /// Per crack of `scene`, whether it is a secondary crack, as its saved
 /// growth run's lineage says (`Resume::lineage_of`, as the simulation
 /// reads it); every crack is a flaw without one.
-fn secondary_in_scene(scene: &SceneFile) -> Vec<bool> {
-    let n = scene.cracks.len();
-    scene
+fn secondary_in_scene(scene: &SceneFile, polylines: &[Vec<[f64; 2]>]) -> Vec<Vec<bool>> {
+    let lineage = scene
         .growth
         .resume
         .as_ref()
-        .and_then(|r| r.lineage_of(n))
-        .map_or_else(
-            || vec![false; n],
-            |l| l.iter().map(Lineage::is_secondary).collect(),
-        )
+        .and_then(|r| r.lineage_of(polylines.len()));
+    polylines
+        .iter()
+        .enumerate()
+        .map(|(i, p)| match lineage {
+            Some(l) => l[i].secondary_segments(p.len()),
+            None => vec![false; p.len().saturating_sub(1)],
+        })
+        .collect()
 }
 
 /// A magnification that shows the largest displacement as 5 % of the

@@ -238,33 +238,69 @@ pub fn paint_boundary(
     }
 }
 
+/// The cracks as polylines, black, with the segments `secondary` marks
+/// (per crack, per segment) in the secondary cracks' purple; the selected
+/// crack wider.
 pub fn paint_cracks(
     painter: &Painter,
     view: &ViewTransform,
     cracks: &[Vec<[f64; 2]>],
-    secondary: &[bool],
+    secondary: &[Vec<bool>],
     selected: Option<usize>,
 ) {
     for (i, c) in cracks.iter().enumerate() {
-        let points: Vec<Pos2> = c.iter().map(|&p| view.screen_from_world(p)).collect();
         let width = if selected == Some(i) { 4.0 } else { 2.5 };
-        let colour = if secondary.get(i) == Some(&true) {
-            SECONDARY_COLOR
-        } else {
-            CRACK_COLOR
-        };
-        painter.add(Shape::line(points, Stroke::new(width, colour)));
+        let flags = secondary.get(i).map_or(&[][..], Vec::as_slice);
+        // runs of segments of one kind, each a polyline
+        let mut start = 0;
+        while start + 1 < c.len() {
+            let kind = flags.get(start) == Some(&true);
+            let mut end = start + 1;
+            while end + 1 < c.len() && (flags.get(end) == Some(&true)) == kind {
+                end += 1;
+            }
+            let points: Vec<Pos2> = c[start..=end]
+                .iter()
+                .map(|&p| view.screen_from_world(p))
+                .collect();
+            let colour = if kind { SECONDARY_COLOR } else { CRACK_COLOR };
+            painter.add(Shape::line(points, Stroke::new(width, colour)));
+            start = end;
+        }
     }
+}
+
+/// The segment of `polyline` nearest to `p` (0 for a single point).
+fn nearest_segment(polyline: &[[f64; 2]], p: [f64; 2]) -> usize {
+    let distance = |w: &[[f64; 2]]| {
+        let (a, b) = (w[0], w[1]);
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let len2 = d[0] * d[0] + d[1] * d[1];
+        let t = if len2 > 0.0 {
+            (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (p[0] - a[0] - t * d[0]).hypot(p[1] - a[1] - t * d[1])
+    };
+    polyline
+        .windows(2)
+        .map(distance)
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(0, |(j, _)| j)
 }
 
 /// Contact points coloured by state, and the traction the other face exerts
 /// on the φ > 0 face as arrows (longest arrow 25 points). `secondary`: per
-/// crack, whether it is a secondary crack (see [`contact_dot`]).
+/// crack `cracks`, per segment, whether it is part of a secondary crack
+/// (see [`contact_dot`]; a point takes its nearest segment's).
 pub fn paint_contact(
     painter: &Painter,
     view: &ViewTransform,
     contact: &[ContactPointView],
-    secondary: &[bool],
+    cracks: &[Vec<[f64; 2]>],
+    secondary: &[Vec<bool>],
     arrows: bool,
 ) {
     let max_t = contact
@@ -273,7 +309,11 @@ pub fn paint_contact(
         .fold(0.0_f64, f64::max);
     for c in contact {
         let q = view.screen_from_world([c.x, c.y]);
-        let dot = contact_dot(c.state, secondary.get(c.crack) == Some(&true));
+        let on_secondary = secondary.get(c.crack).is_some_and(|flags| {
+            let polyline = cracks.get(c.crack).map_or(&[][..], Vec::as_slice);
+            flags.get(nearest_segment(polyline, [c.x, c.y])) == Some(&true)
+        });
+        let dot = contact_dot(c.state, on_secondary);
         painter.circle(q, dot.radius, dot.fill, dot.stroke);
         if arrows && max_t > 0.0 && c.state != ContactState::Open {
             let [nx, ny] = c.normal;

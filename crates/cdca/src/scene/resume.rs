@@ -125,6 +125,14 @@ impl Lineage {
         }
     }
 
+    /// Per segment of a polyline of `points` points, whether it is part of
+    /// a secondary crack ([`part_of_segment`](Self::part_of_segment)).
+    pub fn secondary_segments(&self, points: usize) -> Vec<bool> {
+        (0..points.saturating_sub(1))
+            .map(|j| self.part_of_segment(j) == Part::Secondary)
+            .collect()
+    }
+
     /// Records a growth at end `k`; the first growth at an end names its
     /// part: a wing when in tension, a secondary crack when in shear.
     pub fn grew(&mut self, k: usize, shear: bool) {

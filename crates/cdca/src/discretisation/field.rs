@@ -2,7 +2,7 @@
 //! included.
 
 use crate::discretisation::dofs::FIXED;
-use crate::discretisation::xfem::Xfem;
+use crate::discretisation::xfem::{REGULAR, Xfem};
 use crate::geometry::plane::P2;
 
 /// The solution field of one discretisation.
@@ -19,14 +19,95 @@ pub struct PointValue {
     pub grad: [[f64; 2]; 2],
 }
 
+/// The shape functions (enrichment included) of one discretisation at a
+/// list of points, with their DOFs: all a field's value at those points
+/// needs besides the displacement, so that a field read at the same points
+/// after every solve on one discretisation evaluates them once
+/// ([`Field::at_point`]).
+#[derive(Clone, Debug, Default)]
+pub struct PointBasis {
+    vals: Vec<f64>,
+    grads: Vec<P2>,
+    dofs: Vec<u32>,
+    /// Start of each point's functions in `vals`, and the end of the last.
+    starts: Vec<usize>,
+    /// One point's functions, as [`Xfem::eval_element`] gives them.
+    scratch: (Vec<f64>, Vec<P2>, Vec<u32>),
+}
+
+impl PointBasis {
+    /// Room for `points` more points of element `e` of `xfem`.
+    pub fn reserve(&mut self, xfem: &Xfem, e: usize, points: usize) {
+        let slot = xfem.slot[e];
+        let functions = if slot == REGULAR {
+            4
+        } else {
+            xfem.enriched[slot as usize].dofs.len() / 2
+        };
+        self.vals.reserve(points * functions);
+        self.grads.reserve(points * functions);
+        self.dofs.reserve(2 * points * functions);
+        self.starts.reserve(points + 1);
+    }
+
+    /// Adds the point `x` of element `e` of `xfem`.
+    pub fn push(&mut self, xfem: &Xfem, e: usize, x: P2) {
+        let (vals, grads, dofs) = &mut self.scratch;
+        xfem.eval_element(e, x, vals, grads, dofs);
+        if self.starts.is_empty() {
+            self.starts.push(0);
+        }
+        self.vals.extend_from_slice(vals);
+        self.grads.extend_from_slice(grads);
+        self.dofs.extend_from_slice(dofs);
+        self.starts.push(self.vals.len());
+    }
+
+    /// Drops the room left over and the scratch (once every point is in).
+    pub fn shrink_to_fit(&mut self) {
+        self.vals.shrink_to_fit();
+        self.grads.shrink_to_fit();
+        self.dofs.shrink_to_fit();
+        self.starts.shrink_to_fit();
+        self.scratch = Default::default();
+    }
+
+    /// Points held.
+    pub fn len(&self) -> usize {
+        self.starts.len().saturating_sub(1)
+    }
+
+    /// Whether it holds no point.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
 impl Field<'_> {
     /// Value in element `e` at `x` (x may lie on the element's boundary).
     pub fn in_element(&self, e: usize, x: P2) -> PointValue {
         let (mut vals, mut grads, mut dofs) = (Vec::new(), Vec::new(), Vec::new());
         self.xfem
             .eval_element(e, x, &mut vals, &mut grads, &mut dofs);
+        self.combine(&vals, &grads, &dofs)
+    }
+
+    /// Value at point `i` of `basis` (made on this field's discretisation):
+    /// the same as [`in_element`](Self::in_element) there.
+    pub fn at_point(&self, basis: &PointBasis, i: usize) -> PointValue {
+        let (a, b) = (basis.starts[i], basis.starts[i + 1]);
+        self.combine(
+            &basis.vals[a..b],
+            &basis.grads[a..b],
+            &basis.dofs[2 * a..2 * b],
+        )
+    }
+
+    /// `Σ N_s u_s` and its gradient over scalar functions `vals` (gradients
+    /// `grads`) with two DOFs each, `dofs`.
+    fn combine(&self, vals: &[f64], grads: &[P2], dofs: &[u32]) -> PointValue {
         let mut out = PointValue::default();
-        for (s, (&v, g)) in vals.iter().zip(&grads).enumerate() {
+        for (s, (&v, g)) in vals.iter().zip(grads).enumerate() {
             for c in 0..2 {
                 let d = dofs[2 * s + c];
                 if d == FIXED {

@@ -27,10 +27,10 @@
 
 use std::f64::consts::PI;
 
-use crate::discretisation::field::Field;
+use crate::discretisation::field::{Field, PointBasis};
 use crate::discretisation::material::Elastic;
 use crate::discretisation::quadrature::{QPoint, box_rule};
-use crate::discretisation::xfem::{FacePoint, REGULAR};
+use crate::discretisation::xfem::{FacePoint, REGULAR, Xfem};
 use crate::geometry::cracks::TipFrame;
 use crate::geometry::plane::P2;
 
@@ -122,46 +122,102 @@ fn aux(m: usize, r: f64, th: f64, el: &Elastic) -> Aux {
 /// Interaction integrals of one tip; `tractions[i]` is the contact traction
 /// (global) at face point `i` of the discretisation (empty: none).
 pub fn tip_sifs(field: &Field, crack: usize, frame: &TipFrame, r_j: f64, tractions: &[P2]) -> Sifs {
-    let x = field.xfem;
-    let m = &x.mesh;
-    let el = &x.elastic;
-    let q_node = |n: usize| {
-        if (m.node_pos(n) - frame.origin).norm() < r_j {
-            1.0
-        } else {
-            0.0
+    Domain::new(field.xfem, crack, *frame, r_j).sifs(field, tractions)
+}
+
+/// One quadrature point of a domain: what its term needs besides the
+/// displacement.
+#[derive(Clone, Debug)]
+struct DomainPoint {
+    /// `∇q` in the tip frame.
+    dq: P2,
+    /// The quadrature weight.
+    w: f64,
+    /// Per auxiliary field: the field and its strain.
+    aux: [(Aux, [f64; 3]); 3],
+}
+
+/// The part of one tip's interaction integral that does not depend on the
+/// displacement: its domain's quadrature points (those of the elements the
+/// circle `r_J` cuts, where `∇q ≠ 0`) with their shape functions, `∇q` and
+/// auxiliary fields. It depends on the discretisation alone, so the
+/// integrals after every solve on one discretisation share it.
+#[derive(Clone, Debug)]
+pub struct Domain {
+    crack: usize,
+    frame: TipFrame,
+    r_j: f64,
+    basis: PointBasis,
+    points: Vec<DomainPoint>,
+}
+
+impl Domain {
+    /// The domain of radius `r_j` around the tip `frame` of crack `crack`
+    /// on `x`.
+    pub fn new(x: &Xfem, crack: usize, frame: TipFrame, r_j: f64) -> Self {
+        let m = &x.mesh;
+        let el = &x.elastic;
+        let q_node = |n: usize| q_at_node(x, &frame, r_j, n);
+        let pad = P2::new(r_j + m.h(), r_j + m.h());
+        let mut qps: Vec<QPoint> = Vec::new();
+        let mut basis = PointBasis::default();
+        let mut points = Vec::new();
+        for e in m.elements_in_box(frame.origin - pad, frame.origin + pad, 0.0) {
+            let nodes = m.element_nodes(e);
+            let q: [f64; 4] = nodes.map(q_node);
+            let inside = q.iter().filter(|&&v| v > 0.0).count();
+            if inside == 0 || inside == 4 {
+                continue;
+            }
+            qps.clear();
+            if x.slot[e] == REGULAR {
+                let (lo, hi) = m.element_box(e);
+                box_rule(lo, hi, 4, &mut qps);
+            } else {
+                qps.extend_from_slice(&x.enriched[x.slot[e] as usize].qps);
+            }
+            basis.reserve(x, e, qps.len());
+            for p in &qps {
+                let (_, dn) = m.shape(e, p.x);
+                let dq = (0..4).fold(P2::zeros(), |acc, i| acc + dn[i] * q[i]);
+                let dq = P2::new(dq.dot(&frame.e1), dq.dot(&frame.e2));
+                basis.push(x, e, p.x);
+                let loc = frame.local(p.x);
+                let (r, th) = (loc.norm(), loc.y.atan2(loc.x));
+                let aux = [0, 1, 2].map(|mi| {
+                    let a = aux(mi, r, th, el);
+                    (a, el.strain_from_stress(a.s))
+                });
+                points.push(DomainPoint { dq, w: p.w, aux });
+            }
         }
-    };
-    let mut integral = [0.0; 3];
-    let pad = P2::new(r_j + m.h(), r_j + m.h());
-    let mut qps: Vec<QPoint> = Vec::new();
-    for e in m.elements_in_box(frame.origin - pad, frame.origin + pad, 0.0) {
-        let nodes = m.element_nodes(e);
-        let q: [f64; 4] = nodes.map(q_node);
-        let inside = q.iter().filter(|&&v| v > 0.0).count();
-        if inside == 0 || inside == 4 {
-            continue;
+        basis.shrink_to_fit();
+        Self {
+            crack,
+            frame,
+            r_j,
+            basis,
+            points,
         }
-        qps.clear();
-        if x.slot[e] == REGULAR {
-            let (lo, hi) = m.element_box(e);
-            box_rule(lo, hi, 4, &mut qps);
-        } else {
-            qps.extend_from_slice(&x.enriched[x.slot[e] as usize].qps);
-        }
-        for p in &qps {
-            let (_, dn) = m.shape(e, p.x);
-            let dq = (0..4).fold(P2::zeros(), |acc, i| acc + dn[i] * q[i]);
-            let dq = P2::new(dq.dot(&frame.e1), dq.dot(&frame.e2));
-            let v = field.in_element(e, p.x);
+    }
+
+    /// `K_I`, `K_II` and `T` of the field `field` (on the discretisation
+    /// the domain was made on); `tractions[i]` is the contact traction
+    /// (global) at face point `i` (empty: none).
+    pub fn sifs(&self, field: &Field, tractions: &[P2]) -> Sifs {
+        let x = field.xfem;
+        let m = &x.mesh;
+        let el = &x.elastic;
+        let (frame, r_j, crack) = (&self.frame, self.r_j, self.crack);
+        let q_node = |n: usize| q_at_node(x, frame, r_j, n);
+        let mut integral = [0.0; 3];
+        for (i, p) in self.points.iter().enumerate() {
+            let v = field.at_point(&self.basis, i);
             let s = field.stress(&v);
             let sl = rotate_stress(s, frame);
             let gl = rotate_grad(v.grad, frame);
-            let loc = frame.local(p.x);
-            let (r, th) = (loc.norm(), loc.y.atan2(loc.x));
-            for (mi, out) in integral.iter_mut().enumerate() {
-                let a = aux(mi, r, th, el);
-                let ea = el.strain_from_stress(a.s);
+            let dq = p.dq;
+            for (out, (a, ea)) in integral.iter_mut().zip(&p.aux) {
                 let w = sl[0] * ea[0] + sl[1] * ea[1] + sl[2] * ea[2];
                 // j = 1
                 let t1 =
@@ -172,68 +228,77 @@ pub fn tip_sifs(field: &Field, crack: usize, frame: &TipFrame, r_j: f64, tractio
                 *out += (t1 * dq.x + t2 * dq.y) * p.w * x.thickness;
             }
         }
-    }
-    // crack-face term with the contact tractions
-    if !tractions.is_empty() {
-        let faces: Vec<(&FacePoint, P2)> = x
-            .faces
-            .iter()
-            .zip(tractions)
-            .filter(|(fp, _)| fp.crack == crack)
-            .map(|(fp, p)| (fp, *p))
-            .collect();
-        let band = TRACTION_BAND * m.h();
-        for &(fp, _) in &faces {
-            let e = x.enriched[fp.slot].elem;
-            let qn: [f64; 4] = m.element_nodes(e).map(q_node);
-            if qn.iter().all(|&v| v == 0.0) {
-                continue;
-            }
-            // a tip sliver's traction is a copy of its neighbour's, not a
-            // sample of its own: counted, it weighs that neighbour twice
-            // where the face term's weight 1/√r is largest
-            let average = |own: bool| {
-                faces
-                    .iter()
-                    .filter(|(other, _)| {
-                        (other.s - fp.s).abs() <= band && (own || other.follows.is_none())
-                    })
-                    .fold((P2::zeros(), 0.0), |(sum, w), (other, p)| {
-                        (sum + p * other.w, w + other.w)
-                    })
-            };
-            let (sum, weight) = match average(false) {
-                (_, 0.0) => average(true),
-                a => a,
-            };
-            let p = sum / weight;
-            if p == P2::zeros() {
-                continue;
-            }
-            // the + side (φ > 0) is on the e2 side when n·e2 > 0
-            let plus = if fp.n.dot(&frame.e2) >= 0.0 { PI } else { -PI };
-            let pl = P2::new(p.dot(&frame.e1), p.dot(&frame.e2));
-            for qp in &fp.qps {
-                let (nsh, _) = m.shape(e, qp.x);
-                let q = (0..4).map(|i| nsh[i] * qn[i]).sum::<f64>();
-                if q <= 0.0 {
+        // crack-face term with the contact tractions
+        if !tractions.is_empty() {
+            let faces: Vec<(&FacePoint, P2)> = x
+                .faces
+                .iter()
+                .zip(tractions)
+                .filter(|(fp, _)| fp.crack == crack)
+                .map(|(fp, p)| (fp, *p))
+                .collect();
+            let band = TRACTION_BAND * m.h();
+            for &(fp, _) in &faces {
+                let e = x.enriched[fp.slot].elem;
+                let qn: [f64; 4] = m.element_nodes(e).map(q_node);
+                if qn.iter().all(|&v| v == 0.0) {
                     continue;
                 }
-                let r = frame.local(qp.x).norm();
-                for (mi, out) in integral.iter_mut().enumerate() {
-                    let up = aux(mi, r, plus, el).du1;
-                    let dn = aux(mi, r, -plus, el).du1;
-                    *out += (pl.x * (up[0] - dn[0]) + pl.y * (up[1] - dn[1])) * q * qp.w;
+                // a tip sliver's traction is a copy of its neighbour's, not a
+                // sample of its own: counted, it weighs that neighbour twice
+                // where the face term's weight 1/√r is largest
+                let average = |own: bool| {
+                    faces
+                        .iter()
+                        .filter(|(other, _)| {
+                            (other.s - fp.s).abs() <= band && (own || other.follows.is_none())
+                        })
+                        .fold((P2::zeros(), 0.0), |(sum, w), (other, p)| {
+                            (sum + p * other.w, w + other.w)
+                        })
+                };
+                let (sum, weight) = match average(false) {
+                    (_, 0.0) => average(true),
+                    a => a,
+                };
+                let p = sum / weight;
+                if p == P2::zeros() {
+                    continue;
+                }
+                // the + side (φ > 0) is on the e2 side when n·e2 > 0
+                let plus = if fp.n.dot(&frame.e2) >= 0.0 { PI } else { -PI };
+                let pl = P2::new(p.dot(&frame.e1), p.dot(&frame.e2));
+                for qp in &fp.qps {
+                    let (nsh, _) = m.shape(e, qp.x);
+                    let q = (0..4).map(|i| nsh[i] * qn[i]).sum::<f64>();
+                    if q <= 0.0 {
+                        continue;
+                    }
+                    let r = frame.local(qp.x).norm();
+                    for (mi, out) in integral.iter_mut().enumerate() {
+                        let up = aux(mi, r, plus, el).du1;
+                        let dn = aux(mi, r, -plus, el).du1;
+                        *out += (pl.x * (up[0] - dn[0]) + pl.y * (up[1] - dn[1])) * q * qp.w;
+                    }
                 }
             }
         }
+        let ep = el.e_prime();
+        let t = x.thickness;
+        Sifs {
+            k1: 0.5 * ep * integral[0] / t,
+            k2: 0.5 * ep * integral[1] / t,
+            t: ep * integral[2] / t,
+        }
     }
-    let ep = el.e_prime();
-    let t = x.thickness;
-    Sifs {
-        k1: 0.5 * ep * integral[0] / t,
-        k2: 0.5 * ep * integral[1] / t,
-        t: ep * integral[2] / t,
+}
+
+/// `q` at node `n`: 1 within `r_j` of the tip, 0 outside.
+fn q_at_node(x: &Xfem, frame: &TipFrame, r_j: f64, n: usize) -> f64 {
+    if (x.mesh.node_pos(n) - frame.origin).norm() < r_j {
+        1.0
+    } else {
+        0.0
     }
 }
 

@@ -3,13 +3,15 @@
 
 use crate::contact::law::{ContactState, FaceState, face_tractions};
 use crate::discretisation::field::Field;
-use crate::discretisation::xfem::{FacePoint, Xfem};
+use crate::discretisation::material::Elastic;
+use crate::discretisation::xfem::{FacePoint, Xfem, XfemParams};
 use crate::fracture::criterion::{
     Circle, CriterionParams, Faces, assess, sample_field, sample_hybrid, sample_williams,
     uniform_stress,
 };
-use crate::fracture::sif::{Sifs, tip_sifs};
+use crate::fracture::sif::{Domain, Sifs};
 use crate::geometry::cracks::{Crack, TipFrame, system_lengths};
+use crate::geometry::mesh::Mesh;
 use crate::geometry::plane::P2;
 use crate::report::TipReport;
 use crate::scene::Sampling;
@@ -21,17 +23,76 @@ pub const DOMAIN_RADIUS: f64 = 3.0;
 /// interaction-integral domain of [`domain_radius`] and the crack-face
 /// `tractions` (one per face piece of `x`, or empty).
 pub fn all_tip_sifs(x: &Xfem, u: &[f64], tractions: &[P2]) -> Vec<(usize, usize, TipFrame, Sifs)> {
-    let field = Field { xfem: x, u };
-    let h = x.mesh.h();
-    let mut out = Vec::new();
-    for (c, crack) in x.funcs.cracks.iter().enumerate() {
-        for k in crack.free_tips() {
-            let frame = TipFrame::of(crack, k);
-            let r_j = domain_radius(crack, k, h);
-            out.push((c, k, frame, tip_sifs(&field, c, &frame, r_j, tractions)));
+    TipDomains::new(x).sifs(x, u, tractions)
+}
+
+/// The interaction-integral domains of every free tip of one
+/// discretisation ([`Domain`]: what the integrals need besides the
+/// displacement, about four fifths of their cost), made once and read
+/// after every solve on it. It remembers what they depend on (cracks,
+/// mesh, enrichment, material), so a caller that keeps one asks
+/// [`fits`](Self::fits) before reading it with another discretisation.
+#[derive(Clone, Debug)]
+pub struct TipDomains {
+    /// Per free tip, in the order crack, tip: crack, tip, frame, domain.
+    tips: Vec<(usize, usize, TipFrame, Domain)>,
+    cracks: Vec<Crack>,
+    mesh: Mesh,
+    params: XfemParams,
+    elastic: Elastic,
+    thickness: f64,
+    free_dofs: usize,
+}
+
+impl TipDomains {
+    /// The domains of [`domain_radius`] of `x`'s free tips.
+    pub fn new(x: &Xfem) -> Self {
+        let h = x.mesh.h();
+        let mut tips = Vec::new();
+        for (c, crack) in x.funcs.cracks.iter().enumerate() {
+            for k in crack.free_tips() {
+                let frame = TipFrame::of(crack, k);
+                let r_j = domain_radius(crack, k, h);
+                tips.push((c, k, frame, Domain::new(x, c, frame, r_j)));
+            }
+        }
+        Self {
+            tips,
+            cracks: x.funcs.cracks.clone(),
+            mesh: x.mesh.clone(),
+            params: x.params,
+            elastic: x.elastic.clone(),
+            thickness: x.thickness,
+            free_dofs: x.n_free(),
         }
     }
-    out
+
+    /// Whether these are the domains of `x` (made on a discretisation of
+    /// the same cracks, mesh, enrichment and material).
+    pub fn fits(&self, x: &Xfem) -> bool {
+        self.free_dofs == x.n_free()
+            && self.thickness == x.thickness
+            && self.params == x.params
+            && self.elastic == x.elastic
+            && self.cracks == x.funcs.cracks
+            && self.mesh == x.mesh
+    }
+
+    /// K_I, K_II and T of every free tip of `x` (which these domains
+    /// [`fit`](Self::fits)) at `u`, as [`all_tip_sifs`].
+    pub fn sifs(
+        &self,
+        x: &Xfem,
+        u: &[f64],
+        tractions: &[P2],
+    ) -> Vec<(usize, usize, TipFrame, Sifs)> {
+        debug_assert!(self.fits(x), "tip domains of another discretisation");
+        let field = Field { xfem: x, u };
+        self.tips
+            .iter()
+            .map(|(c, k, frame, d)| (*c, *k, *frame, d.sifs(&field, tractions)))
+            .collect()
+    }
 }
 
 /// Smallest turn of a crack's polyline at a vertex, in degrees, that ends
@@ -80,9 +141,11 @@ pub struct Evaluation {
 }
 
 /// Tip reports, the sampled circles and the utilisations, in the order
-/// crack, tip.
+/// crack, tip; `domains`: `x`'s ([`TipDomains::new`], or one kept that
+/// [`fits`](TipDomains::fits) it).
 pub fn evaluate_tips(
     x: &Xfem,
+    domains: &TipDomains,
     u: &[f64],
     states: &[FaceState],
     params: &CriterionParams,
@@ -92,7 +155,7 @@ pub fn evaluate_tips(
     let tractions = face_tractions(x, states);
     let mut out = Evaluation::default();
     let lengths = system_lengths(&x.funcs.cracks);
-    for (c, k, frame, s) in all_tip_sifs(x, u, &tractions) {
+    for (c, k, frame, s) in domains.sifs(x, u, &tractions) {
         let crack = &x.funcs.cracks[c];
         let params = &params.for_crack(lengths[c]);
         let faces = Faces {

@@ -10,7 +10,7 @@ use crate::contact::law::{ContactState, FaceState, counts};
 use crate::error::SolveError;
 use crate::fracture::kinks::evaluate_kinks;
 use crate::fracture::rock::{RockStrength, intact_rock};
-use crate::fracture::tips::evaluate_tips;
+use crate::fracture::tips::{TipDomains, evaluate_tips};
 use crate::geometry::cracks::{root, split_specimen};
 use crate::geometry::plane::{P2, segment_intersection};
 use crate::report::{ContactReport, FreePieceReport, IntactRockReport, SolveReport, SolverReport};
@@ -81,8 +81,14 @@ impl Simulation {
     }
 
     pub(super) fn evaluate(&mut self) {
+        let x = &self.scratch.xfem;
+        if !self.scratch.tip_domains.as_ref().is_some_and(|d| d.fits(x)) {
+            self.scratch.tip_domains = Some(TipDomains::new(x));
+        }
+        let domains = self.scratch.tip_domains.as_ref().expect("just made");
         let e = evaluate_tips(
             &self.scratch.xfem,
+            domains,
             &self.state.u,
             &self.state.faces,
             &self.criterion_params(),

@@ -13,6 +13,7 @@ use crate::discretisation::model::Model;
 use crate::discretisation::xfem::Xfem;
 use crate::error::{SceneError, SolveError};
 use crate::fracture::criterion::{Circle, CriterionParams, Faces};
+use crate::fracture::tips::TipDomains;
 use crate::geometry::cracks::{Crack, TipKind, split_specimen};
 use crate::report::{GrowthStepReport, KinkReport, Outcome, TipReport};
 use crate::scene::{Lineage, MIN_END_SEGMENT, Scene, SceneFile, SideBc, fmt_point};
@@ -73,6 +74,9 @@ pub(super) struct Scratch {
     /// utilisation (≥ 1: a secondary crack starts there).
     pub(super) kinks: Vec<KinkReport>,
     pub(super) kink_utilisation: Vec<f64>,
+    /// The free tips' interaction-integral domains on `xfem`, once a solve
+    /// has been evaluated (remade when they no longer fit it).
+    pub(super) tip_domains: Option<TipDomains>,
     /// The critical-control step in progress, if any.
     pub(super) critical: Option<CriticalRun>,
     /// Contact states the next solve's contact iteration starts from (a
@@ -344,6 +348,7 @@ impl Simulation {
                 utilisation: Vec::new(),
                 kinks: Vec::new(),
                 kink_utilisation: Vec::new(),
+                tip_domains: None,
                 critical: None,
                 contact_guess: None,
                 factored: None,

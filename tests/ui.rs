@@ -1947,7 +1947,6 @@ fn the_key_names_secondary_cracks_exactly_when_the_scene_has_one() {
 )]
 fn contact_dots_on_secondary_cracks_are_ringed_in_purple() {
     let (saved, secondary) = loop_with_secondary_cracks();
-    let purple = cdca_workbench::app::SECONDARY_COLOR;
     let mut h = opened_unsolved("loop_grown.json", saved);
     solve_opened(&mut h);
     let app = h.state();
@@ -1961,14 +1960,25 @@ fn contact_dots_on_secondary_cracks_are_ringed_in_purple() {
         "a closed secondary crack"
     );
     assert!(points.iter().any(|c| !on_secondary(c)), "dots on the flaws");
-    let circles: Vec<egui::epaint::CircleShape> = painted(&h)
+    assert_purple_rings(&h, on_secondary);
+}
+
+/// Asserts that each contact point's dot is ringed in the secondary
+/// cracks' purple exactly when `on_secondary` says it lies on one.
+fn assert_purple_rings(
+    h: &Harness<'_, WorkbenchApp>,
+    on_secondary: impl Fn(&cdca::ContactPointView) -> bool,
+) {
+    let purple = cdca_workbench::app::SECONDARY_COLOR;
+    let app = h.state();
+    let circles: Vec<egui::epaint::CircleShape> = painted(h)
         .into_iter()
         .filter_map(|s| match s {
             egui::Shape::Circle(c) => Some(c),
             _ => None,
         })
         .collect();
-    for c in points {
+    for c in app.contact_points() {
         let at = app.screen_from_world([c.x, c.y]);
         let ringed = circles
             .iter()
@@ -2079,27 +2089,7 @@ fn a_flaw_end_grown_in_shear_is_drawn_as_a_secondary_crack() {
     let points_here = app.contact_points();
     assert!(points_here.iter().any(on_end), "dots on the sheared end");
     assert!(points_here.iter().any(|c| !on_end(c)), "dots on the flaw");
-    let circles: Vec<egui::epaint::CircleShape> = painted(&h)
-        .into_iter()
-        .filter_map(|s| match s {
-            egui::Shape::Circle(c) => Some(c),
-            _ => None,
-        })
-        .collect();
-    for c in points_here {
-        let at = app.screen_from_world([c.x, c.y]);
-        let ringed: Vec<bool> = circles
-            .iter()
-            .filter(|d| d.center.distance(at) < 1e-3)
-            .map(|d| d.stroke.width > 0.0 && d.stroke.color == purple)
-            .collect();
-        assert!(
-            ringed.contains(&on_end(c)),
-            "the dot at ({}, {}): purple rings {ringed:?}",
-            c.x,
-            c.y
-        );
-    }
+    assert_purple_rings(&h, on_end);
 }
 
 /// A solved scene whose every crack end meets another crack has no tip to

@@ -793,7 +793,7 @@ fn grow_makes_the_crack_longer() {
 /// Frame time during Run growth on the default scene (logic + UI on the
 /// CPU, no GPU): `cargo test --release --test ui frame_time -- --nocapture`.
 #[test]
-#[ignore = "a timing measurement, not a test to run on shared machines (bash scripts/frame_times.sh; measured on the default scene, 2-core machine at load 1: mean 10.7-10.8 ms, p95 16-18 ms, max 23 ms; 2026-11-27 with secondary cracks, 26 growth steps: mean 11.3 ms, p95 20.8 ms, max 25.8 ms; later, with low-rank corrections and kept tip domains: 182-192 frames for the 26 steps, mean 12.1-12.3 ms, p95 21.3-22.6 ms, max 27.5 ms)"]
+#[ignore = "a timing measurement, not a test to run on shared machines (bash scripts/frame_times.sh; measured on the default scene, 2-core machine at load 1: mean 10.7-10.8 ms, p95 16-18 ms, max 23 ms; 2026-11-27 with secondary cracks, 26 growth steps: mean 11.3 ms, p95 20.8 ms, max 25.8 ms; later, with low-rank corrections and kept tip domains made in slices of their own: 219-244 frames for the 26 steps, mean 11.7-11.9 ms, p95 15.7 ms, max 19.8 ms)"]
 fn frame_time_during_run_growth() {
     let mut h = harness(Options::default());
     h.run_steps(10);

@@ -13,7 +13,7 @@ use crate::discretisation::loads::traction_forces;
 use crate::discretisation::model::Model;
 use crate::discretisation::xfem::Xfem;
 use crate::error::SolveError;
-use crate::fracture::tips::all_tip_sifs;
+use crate::fracture::tips::TipDomains;
 use crate::geometry::plane::P2;
 use crate::scene::Scene;
 use crate::solvers::element_op::ElementOperator;
@@ -66,9 +66,11 @@ pub struct Sample {
     pub k2: f64,
 }
 
-/// The direct solution, its energy norm and its SIFs.
+/// The direct solution, its energy norm and its SIFs (and the tips'
+/// interaction-integral domains, made once: every sample reads them).
 pub struct Reference {
     u: Vec<f64>,
+    domains: TipDomains,
     energy: f64,
     k: Vec<(f64, f64)>,
     /// Largest |K| of the reference (the scale of the K errors).
@@ -78,12 +80,14 @@ pub struct Reference {
 impl Reference {
     pub fn new(x: &Xfem, op: &ElementOperator, u: &[f64]) -> Self {
         let mut kv = vec![0.0; u.len()];
-        let k = sifs(x, u);
+        let domains = TipDomains::new(x);
+        let k = sifs(x, &domains, u);
         let scale = k
             .iter()
             .fold(0.0_f64, |m, (a, b)| m.max(a.abs()).max(b.abs()));
         Self {
             u: u.to_vec(),
+            domains,
             energy: op.energy(u, &mut kv).max(0.0).sqrt(),
             k,
             scale,
@@ -102,7 +106,7 @@ impl Reference {
         let e: Vec<f64> = u.iter().zip(&self.u).map(|(a, b)| a - b).collect();
         let mut kv = vec![0.0; u.len()];
         let energy = relative(op.energy(&e, &mut kv).max(0.0).sqrt(), self.energy);
-        let k = sifs(x, u);
+        let k = sifs(x, &self.domains, u);
         let err = |pick: fn(&(f64, f64)) -> f64| {
             k.iter().zip(&self.k).fold(0.0_f64, |m, (a, b)| {
                 m.max(relative((pick(a) - pick(b)).abs(), self.scale))
@@ -123,9 +127,9 @@ fn relative(a: f64, b: f64) -> f64 {
     if b > 0.0 { a / b } else { a }
 }
 
-/// (K_I, K_II) of every free tip, with the contact tractions of the states
-/// that `u` itself implies.
-fn sifs(x: &Xfem, u: &[f64]) -> Vec<(f64, f64)> {
+/// (K_I, K_II) of every free tip (`domains`: `x`'s), with the contact
+/// tractions of the states that `u` itself implies.
+fn sifs(x: &Xfem, domains: &TipDomains, u: &[f64]) -> Vec<(f64, f64)> {
     let tractions: Vec<P2> = x
         .faces
         .iter()
@@ -134,7 +138,8 @@ fn sifs(x: &Xfem, u: &[f64]) -> Vec<(f64, f64)> {
             update_point(&x.funcs.cracks[fp.crack], 0.0, gn, gt).traction(fp)
         })
         .collect();
-    all_tip_sifs(x, u, &tractions)
+    domains
+        .sifs(x, u, &tractions)
         .into_iter()
         .map(|(_, _, _, s)| (s.k1, s.k2))
         .collect()

@@ -47,17 +47,17 @@ pub struct TipDomains {
 impl TipDomains {
     /// The domains of [`domain_radius`] of `x`'s free tips.
     pub fn new(x: &Xfem) -> Self {
-        let h = x.mesh.h();
-        let mut tips = Vec::new();
-        for (c, crack) in x.funcs.cracks.iter().enumerate() {
-            for k in crack.free_tips() {
-                let frame = TipFrame::of(crack, k);
-                let r_j = domain_radius(crack, k, h);
-                tips.push((c, k, frame, Domain::new(x, c, frame, r_j)));
-            }
-        }
+        let mut domains = Self::start(x);
+        while domains.make_next(x) {}
+        domains
+    }
+
+    /// None of `x`'s domains made yet: [`make_next`](Self::make_next)
+    /// makes them one at a time (so that the workbench can spread them
+    /// over frames).
+    pub fn start(x: &Xfem) -> Self {
         Self {
-            tips,
+            tips: Vec::new(),
             cracks: x.funcs.cracks.clone(),
             mesh: x.mesh.clone(),
             params: x.params,
@@ -65,6 +65,27 @@ impl TipDomains {
             thickness: x.thickness,
             free_dofs: x.n_free(),
         }
+    }
+
+    /// Makes the next free tip's domain on `x` (which these
+    /// [`fit`](Self::fits)); `false` when every one was made already.
+    pub fn make_next(&mut self, x: &Xfem) -> bool {
+        let h = x.mesh.h();
+        let next = x
+            .funcs
+            .cracks
+            .iter()
+            .enumerate()
+            .flat_map(|(c, crack)| crack.free_tips().map(move |k| (c, k)))
+            .nth(self.tips.len());
+        let Some((c, k)) = next else {
+            return false;
+        };
+        let crack = &x.funcs.cracks[c];
+        let frame = TipFrame::of(crack, k);
+        let r_j = domain_radius(crack, k, h);
+        self.tips.push((c, k, frame, Domain::new(x, c, frame, r_j)));
+        true
     }
 
     /// Whether these are the domains of `x` (made on a discretisation of

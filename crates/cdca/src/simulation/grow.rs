@@ -10,6 +10,7 @@ use crate::contact::law::{FaceState, carry_over, counts};
 use crate::discretisation::xfem::Reuse;
 use crate::error::SolveError;
 use crate::fracture::growth::{Extension, apply, default_increment, extend, extend_from};
+use crate::fracture::tips::TipDomains;
 use crate::geometry::cracks::{Crack, TipKind, classify_tips, root, split_specimen};
 use crate::geometry::plane::{P2, distance_to_segment};
 use crate::report::{
@@ -127,8 +128,11 @@ impl Simulation {
     /// One chunk of what a rebuild after growth, or a new simulation, left
     /// to do (see [`rebuild`](Self::rebuild)): the stiffness of
     /// [`INTEGRATION_CHUNK`] quadrature points of the changed elements, or, for the direct solver,
-    /// the stiffness pattern and its symbolic factorisation. Returns
-    /// whether nothing is left, i.e. whether a solve can start.
+    /// the stiffness pattern and its symbolic factorisation, or one free
+    /// tip's interaction-integral domain (read after every solve on this
+    /// discretisation: made here, a slice each, not all in the slice that
+    /// ends the first solve). Returns whether nothing is left, i.e.
+    /// whether a solve can start.
     pub(super) fn prepare_chunk(&mut self) -> Result<bool, SolveError> {
         let x = &mut self.scratch.xfem;
         if !x.is_integrated() {
@@ -139,7 +143,13 @@ impl Simulation {
             x.pattern()?;
             return Ok(false);
         }
-        Ok(true)
+        let x = &self.scratch.xfem;
+        let domains = match self.scratch.tip_domains.take() {
+            Some(d) if d.fits(x) => d,
+            _ => TipDomains::start(x),
+        };
+        let domains = self.scratch.tip_domains.insert(domains);
+        Ok(!domains.make_next(x))
     }
 
     /// After the step's solve: decide, extend the growing tips (or advance

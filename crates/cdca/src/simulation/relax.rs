@@ -29,7 +29,8 @@ impl Simulation {
     /// Advances the solve started by
     /// [`start_relaxation`](Self::start_relaxation) (started now if none is
     /// under way) by one chunk of what the discretisation still lacks (the
-    /// element stiffness of a new simulation, the direct solver's pattern),
+    /// element stiffness of a new simulation, the direct solver's pattern,
+    /// a free tip's interaction-integral domain),
     /// one linear-solver setup (a factorisation, cells or a multigrid
     /// hierarchy) or at most `max_iterations` sweeps or iterations; cheap
     /// enough to call once per frame. A setup is done

@@ -82,10 +82,15 @@ impl Simulation {
 
     pub(super) fn evaluate(&mut self) {
         let x = &self.scratch.xfem;
-        if !self.scratch.tip_domains.as_ref().is_some_and(|d| d.fits(x)) {
-            self.scratch.tip_domains = Some(TipDomains::new(x));
-        }
-        let domains = self.scratch.tip_domains.as_ref().expect("just made");
+        let domains = match self.scratch.tip_domains.take() {
+            Some(mut d) if d.fits(x) => {
+                while d.make_next(x) {}
+                d
+            }
+            _ => TipDomains::new(x),
+        };
+        self.scratch.tip_domains = Some(domains);
+        let domains = self.scratch.tip_domains.as_ref().expect("just set");
         let e = evaluate_tips(
             &self.scratch.xfem,
             domains,

@@ -546,14 +546,6 @@ fn relaxation_does_not_depend_on_the_slice_size() {
     }
 }
 
-/// Converged means a fixed point (default contact, `k_N = 100 E/h`): the
-/// kinked crack of the 3.9 mm 35° μ = 0.6 flaw after its growth run (tension
-/// wings on both ends), solved under −100 MPa. The iteration must end
-/// converged, and one more solve of the system of its final states must
-/// move `u` by at most the tolerance (1e-8 relative) and change no state.
-/// Before the test was taken on the undamped step, this problem was
-/// declared converged after 36 iterations on a step cut to β ≈ 1.5e-5
-/// while that solve still moved `u` by 3.9e-4.
 /// A kinked closed flaw in a 30 mm specimen (60 × 60) under 100 MPa
 /// compression: stuck, slipping and open points on one crack.
 fn kinked_flaw_in_compression() -> cdca::scene::Scene {
@@ -573,24 +565,52 @@ fn kinked_flaw_in_compression() -> cdca::scene::Scene {
     .expect("scene")
 }
 
-#[test]
-fn converged_contact_is_a_fixed_point() {
-    use cdca::contact::iteration::{solve_with_contact, solve_with_contact_from};
+/// [`kinked_flaw_in_compression`] discretised and solved with contact
+/// (direct solver, no slip history): the discretisation, the load, the
+/// committed states, the displacement, the states and how it ended.
+fn solved_kinked_flaw() -> (
+    cdca::discretisation::xfem::Xfem,
+    Vec<f64>,
+    Vec<cdca::contact::law::FaceState>,
+    Vec<f64>,
+    Vec<cdca::contact::law::FaceState>,
+    cdca::contact::status::ContactInfo,
+) {
     use cdca::contact::law::FaceState;
-    use cdca::contact::status::{ContactParams, relative_change};
-    use cdca::discretisation::model::Model;
-    use cdca::solvers::linear::DirectSolver;
-
     let scene = kinked_flaw_in_compression();
-    let model = Model::new(scene.clone());
+    let model = cdca::discretisation::model::Model::new(scene.clone());
     let x = model.discretise(model.initial_cracks());
-    let f = cdca::discretisation::loads::traction_forces(&x, &scene.boundary);
+    let load = cdca::discretisation::loads::traction_forces(&x, &scene.boundary);
     let committed = vec![FaceState::default(); x.faces.len()];
     let mut u = vec![0.0; x.n_free()];
+    let (states, info) = cdca::contact::iteration::solve_with_contact(
+        &x,
+        &load,
+        &committed,
+        &mut u,
+        &mut cdca::solvers::linear::DirectSolver::default(),
+        cdca::contact::status::ContactParams::default(),
+    )
+    .expect("solve");
+    (x, load, committed, u, states, info)
+}
+
+/// Converged means a fixed point (default contact, `k_N = 100 E/h`): the
+/// kinked crack of the 3.9 mm 35° μ = 0.6 flaw after its growth run (tension
+/// wings on both ends), solved under −100 MPa. The iteration must end
+/// converged, and one more solve of the system of its final states must
+/// move `u` by at most the tolerance (1e-8 relative) and change no state.
+/// Before the test was taken on the undamped step, this problem was
+/// declared converged after 36 iterations on a step cut to β ≈ 1.5e-5
+/// while that solve still moved `u` by 3.9e-4.
+#[test]
+fn converged_contact_is_a_fixed_point() {
+    use cdca::contact::iteration::solve_with_contact_from;
+    use cdca::contact::status::{ContactParams, relative_change};
+    use cdca::solvers::linear::DirectSolver;
+
+    let (x, f, committed, u, states, info) = solved_kinked_flaw();
     let params = ContactParams::default();
-    let mut solver = DirectSolver::default();
-    let (states, info) =
-        solve_with_contact(&x, &f, &committed, &mut u, &mut solver, params).expect("solve");
     assert!(info.converged, "{info:?}");
     assert_eq!(info.violating, 0, "{info:?}");
     let mut again = u.clone();
@@ -631,28 +651,11 @@ fn converged_contact_is_a_fixed_point() {
 /// `MAX_RANK` is factorised.
 #[test]
 fn a_few_changed_contact_states_solve_as_the_factorised_matrix() {
-    use cdca::contact::iteration::solve_with_contact;
     use cdca::contact::law::{ContactState, FaceState, contact_system};
-    use cdca::contact::status::ContactParams;
-    use cdca::discretisation::model::Model;
     use cdca::solvers::linear::{DirectSolver, LinearSolver};
     use cdca::solvers::low_rank::MAX_RANK;
 
-    let scene = kinked_flaw_in_compression();
-    let model = Model::new(scene.clone());
-    let x = model.discretise(model.initial_cracks());
-    let load = cdca::discretisation::loads::traction_forces(&x, &scene.boundary);
-    let committed = vec![FaceState::default(); x.faces.len()];
-    let mut u = vec![0.0; x.n_free()];
-    let (states, info) = solve_with_contact(
-        &x,
-        &load,
-        &committed,
-        &mut u,
-        &mut DirectSolver::default(),
-        ContactParams::default(),
-    )
-    .expect("solve");
+    let (x, load, committed, mut u, states, info) = solved_kinked_flaw();
     assert!(info.converged, "{info:?}");
     let system = |st: &[FaceState]| {
         let mut f = load.clone();

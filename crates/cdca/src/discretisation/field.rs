@@ -71,16 +71,6 @@ impl PointBasis {
         self.starts.shrink_to_fit();
         self.scratch = Default::default();
     }
-
-    /// Points held.
-    pub fn len(&self) -> usize {
-        self.starts.len().saturating_sub(1)
-    }
-
-    /// Whether it holds no point.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
 }
 
 impl Field<'_> {

@@ -67,6 +67,15 @@ impl TipDomains {
         }
     }
 
+    /// The domains kept in `kept` when they fit `x`, or else a start on `x`
+    /// put there in their place.
+    pub fn kept_for<'a>(kept: &'a mut Option<Self>, x: &Xfem) -> &'a mut Self {
+        if !kept.as_ref().is_some_and(|d| d.fits(x)) {
+            *kept = None;
+        }
+        kept.get_or_insert_with(|| Self::start(x))
+    }
+
     /// Makes the next free tip's domain on `x` (which these
     /// [`fit`](Self::fits)); `false` when every one was made already.
     pub fn make_next(&mut self, x: &Xfem) -> bool {

@@ -144,12 +144,7 @@ impl Simulation {
             return Ok(false);
         }
         let x = &self.scratch.xfem;
-        let domains = match self.scratch.tip_domains.take() {
-            Some(d) if d.fits(x) => d,
-            _ => TipDomains::start(x),
-        };
-        let domains = self.scratch.tip_domains.insert(domains);
-        Ok(!domains.make_next(x))
+        Ok(!TipDomains::kept_for(&mut self.scratch.tip_domains, x).make_next(x))
     }
 
     /// After the step's solve: decide, extend the growing tips (or advance

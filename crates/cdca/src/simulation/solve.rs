@@ -82,15 +82,9 @@ impl Simulation {
 
     pub(super) fn evaluate(&mut self) {
         let x = &self.scratch.xfem;
-        let domains = match self.scratch.tip_domains.take() {
-            Some(mut d) if d.fits(x) => {
-                while d.make_next(x) {}
-                d
-            }
-            _ => TipDomains::new(x),
-        };
-        self.scratch.tip_domains = Some(domains);
-        let domains = self.scratch.tip_domains.as_ref().expect("just set");
+        let kept = TipDomains::kept_for(&mut self.scratch.tip_domains, x);
+        while kept.make_next(x) {}
+        let domains = self.scratch.tip_domains.as_ref().expect("just made");
         let e = evaluate_tips(
             &self.scratch.xfem,
             domains,

@@ -468,6 +468,14 @@ pub struct GrowthStepReport {
     /// `unsolved_trials`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub cold_trials: Vec<f64>,
+    /// Load factors of this step's λ_cr trials that were not solved but
+    /// taken from the trial before by scaling (left out when none): with no
+    /// cohesion on any crack face, the solution at `s λ` is `s` times the
+    /// one at `λ`, with the same contact states (checked). Such a trial, and
+    /// `load_factor` when it is one, carries the contact and solver
+    /// iterations and residuals of the solve it was scaled from.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub scaled_trials: Vec<f64>,
     /// Secondary cracks started at kinks in this step (left out when none).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub started: Vec<StartedCrack>,

@@ -8,6 +8,7 @@ use web_time::Instant;
 
 use super::search::{CriticalRun, MAX_UNSOLVED, Next, Search, Snapshot};
 use super::state::Simulation;
+use crate::contact::iteration::states_at_scaled_load;
 use crate::contact::law::FaceState;
 use crate::report::GrowthStepReport;
 
@@ -46,6 +47,7 @@ impl Simulation {
             best: None,
             unsolved: Vec::new(),
             cold_trials: Vec::new(),
+            scaled: Vec::new(),
             cold: false,
             start: Instant::now(),
             ended: None,
@@ -135,8 +137,14 @@ impl Simulation {
         }
         match run.search.record(lambda, u) {
             Next::Trial(next) => {
+                let scaled = self.scale_solved(next, &run.base_faces);
+                if scaled {
+                    run.scaled.push(next);
+                }
                 self.scratch.critical = Some(run);
-                self.start_trial(next);
+                if !scaled {
+                    self.start_trial(next);
+                }
                 None
             }
             Next::Exceeded => Some(self.finish_growth_step(&report, &run.trials(), true)),
@@ -149,6 +157,29 @@ impl Simulation {
                 None
             }
         }
+    }
+
+    /// The trial at `lambda` without a solve, when the scene scales: the
+    /// solved state (a converged trial) times `lambda / λ`, its contact
+    /// states checked at the scaled displacement
+    /// ([`states_at_scaled_load`]), the tips evaluated on it. False (the
+    /// state untouched) when a face has cohesion or a state would change;
+    /// the trial is then solved.
+    fn scale_solved(&mut self, lambda: f64, committed: &[FaceState]) -> bool {
+        let (x, from) = (&self.scratch.xfem, self.state.lambda);
+        if !(self.state.solved && from > 0.0 && lambda > 0.0) {
+            return false;
+        }
+        let s = lambda / from;
+        let u: Vec<f64> = self.state.u.iter().map(|v| v * s).collect();
+        let Some(faces) = states_at_scaled_load(x, &u, committed, &self.state.faces) else {
+            return false;
+        };
+        self.state.u = u;
+        self.state.faces = faces;
+        self.state.lambda = lambda;
+        self.evaluate();
+        true
     }
 
     fn snapshot(&self) -> Snapshot {

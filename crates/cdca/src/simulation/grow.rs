@@ -121,6 +121,7 @@ impl Simulation {
             start,
             unsolved: &[],
             cold: &[],
+            scaled: &[],
         };
         Ok(Some(self.finish_growth_step(&report, &trials, true)))
     }
@@ -217,6 +218,7 @@ impl Simulation {
             intact_rock: self.intact_rock(),
             unsolved_trials: trials.unsolved.to_vec(),
             cold_trials: trials.cold.to_vec(),
+            scaled_trials: trials.scaled.to_vec(),
             kinks: report.kinks.clone(),
             ..GrowthStepReport::default()
         };

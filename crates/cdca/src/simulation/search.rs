@@ -220,6 +220,9 @@ pub(super) struct CriticalRun {
     /// progress.
     pub(super) cold_trials: Vec<f64>,
     pub(super) cold: bool,
+    /// Load factors of the trials taken from the last solved one by
+    /// scaling, without a solve (see `Simulation::scale_solved`).
+    pub(super) scaled: Vec<f64>,
     pub(super) start: Instant,
     /// The search's verdict once it has ended (the state then holds the
     /// solve at λ_cr, shown before the tips are extended).
@@ -232,6 +235,7 @@ pub(super) struct Trials<'a> {
     pub(super) start: Instant,
     pub(super) unsolved: &'a [f64],
     pub(super) cold: &'a [f64],
+    pub(super) scaled: &'a [f64],
 }
 
 impl CriticalRun {
@@ -240,6 +244,7 @@ impl CriticalRun {
             start: self.start,
             unsolved: &self.unsolved,
             cold: &self.cold_trials,
+            scaled: &self.scaled,
         }
     }
 }

@@ -214,8 +214,9 @@ pub(super) fn eval_scalars(
 }
 
 /// Quadrature points whose gradients [`add_stiffness`] sums in one matrix
-/// product.
-const STIFFNESS_BATCH: usize = 64;
+/// product. Callers that integrate an element in slices start each slice at
+/// a multiple of it, so that the sums do not depend on the slicing.
+pub(super) const STIFFNESS_BATCH: usize = 64;
 
 /// Adds `Σ_q Bᵀ D B w t` over the element's quadrature points `points`
 /// to `k` (over all of them: the element stiffness `K_e`).
@@ -225,8 +226,9 @@ const STIFFNESS_BATCH: usize = 64;
 /// `a, b` is a combination of D's entries with the four moments
 /// `G_xx = Σ w t g_x g_xᵀ`, `G_xy = Σ w t g_x g_yᵀ`, `G_yx = G_xyᵀ` and
 /// `G_yy`, e.g. `K_{u_a u_b} = D₁₁ G_xx + D₁₃ G_xy + D₃₁ G_yx + D₃₃ G_yy`.
-/// The moments are summed as matrix products over batches of
-/// [`STIFFNESS_BATCH`] points, `G_xx += (W G_x) G_xᵀ`: near a tip an element
+/// The moments of each batch of [`STIFFNESS_BATCH`] points (counted from
+/// the element's first point) are matrix products, `G_xx = (W G_x) G_xᵀ`,
+/// and each batch's block is added to `k` in turn: near a tip an element
 /// has up to 20 000 points.
 pub(super) fn add_stiffness(
     mesh: &Mesh,
@@ -237,6 +239,10 @@ pub(super) fn add_stiffness(
     points: Range<usize>,
     k: &mut DMatrix<f64>,
 ) {
+    debug_assert!(
+        points.start.is_multiple_of(STIFFNESS_BATCH),
+        "a slice starts on a batch"
+    );
     let n = el.scalars.len();
     let (mut gxx, mut gxy, mut gyy) = (
         DMatrix::zeros(n, n),
@@ -249,6 +255,7 @@ pub(super) fn add_stiffness(
     let mut wx = DMatrix::zeros(n, STIFFNESS_BATCH);
     let mut wy = DMatrix::zeros(n, STIFFNESS_BATCH);
     let (mut vals, mut grads) = (Vec::new(), Vec::new());
+    let d = &elastic.d;
     for batch in el.qps[points].chunks(STIFFNESS_BATCH) {
         for (c, q) in batch.iter().enumerate() {
             eval_scalars(mesh, funcs, el, q.x, None, &mut vals, &mut grads);
@@ -262,21 +269,21 @@ pub(super) fn add_stiffness(
         }
         let m = batch.len();
         let (gxt, gyt) = (gx.columns(0, m).transpose(), gy.columns(0, m).transpose());
-        gxx.gemm(1.0, &wx.columns(0, m), &gxt, 1.0);
-        gxy.gemm(1.0, &wx.columns(0, m), &gyt, 1.0);
-        gyy.gemm(1.0, &wy.columns(0, m), &gyt, 1.0);
-    }
-    let d = &elastic.d;
-    for b in 0..n {
-        for a in 0..n {
-            let (xx, xy, yx, yy) = (gxx[(a, b)], gxy[(a, b)], gxy[(b, a)], gyy[(a, b)]);
-            k[(2 * a, 2 * b)] += d[(0, 0)] * xx + d[(0, 2)] * xy + d[(2, 0)] * yx + d[(2, 2)] * yy;
-            k[(2 * a, 2 * b + 1)] +=
-                d[(0, 1)] * xy + d[(0, 2)] * xx + d[(2, 1)] * yy + d[(2, 2)] * yx;
-            k[(2 * a + 1, 2 * b)] +=
-                d[(1, 0)] * yx + d[(1, 2)] * yy + d[(2, 0)] * xx + d[(2, 2)] * xy;
-            k[(2 * a + 1, 2 * b + 1)] +=
-                d[(1, 1)] * yy + d[(1, 2)] * yx + d[(2, 1)] * xy + d[(2, 2)] * xx;
+        gxx.gemm(1.0, &wx.columns(0, m), &gxt, 0.0);
+        gxy.gemm(1.0, &wx.columns(0, m), &gyt, 0.0);
+        gyy.gemm(1.0, &wy.columns(0, m), &gyt, 0.0);
+        for b in 0..n {
+            for a in 0..n {
+                let (xx, xy, yx, yy) = (gxx[(a, b)], gxy[(a, b)], gxy[(b, a)], gyy[(a, b)]);
+                k[(2 * a, 2 * b)] +=
+                    d[(0, 0)] * xx + d[(0, 2)] * xy + d[(2, 0)] * yx + d[(2, 2)] * yy;
+                k[(2 * a, 2 * b + 1)] +=
+                    d[(0, 1)] * xy + d[(0, 2)] * xx + d[(2, 1)] * yy + d[(2, 2)] * yx;
+                k[(2 * a + 1, 2 * b)] +=
+                    d[(1, 0)] * yx + d[(1, 2)] * yy + d[(2, 0)] * xx + d[(2, 2)] * xy;
+                k[(2 * a + 1, 2 * b + 1)] +=
+                    d[(1, 1)] * yy + d[(1, 2)] * yx + d[(2, 1)] * xy + d[(2, 2)] * xx;
+            }
         }
     }
 }
@@ -341,7 +348,7 @@ mod tests {
             .expect("an enriched element");
         let (n, nd) = (el.qps.len(), 2 * el.scalars.len());
         let mut k = DMatrix::zeros(nd, nd);
-        let half = n / 2;
+        let half = (n / 2).next_multiple_of(STIFFNESS_BATCH);
         add_stiffness(&x.mesh, &x.funcs, &x.elastic, 0.7, el, 0..half, &mut k);
         add_stiffness(&x.mesh, &x.funcs, &x.elastic, 0.7, el, half..n, &mut k);
         let mut want = DMatrix::zeros(nd, nd);

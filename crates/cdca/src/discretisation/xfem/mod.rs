@@ -22,7 +22,7 @@ use crate::discretisation::material::Elastic;
 use crate::discretisation::pattern::Pattern;
 use crate::discretisation::xfem::classify::{classify_nodes, element_segments, element_tips};
 use crate::discretisation::xfem::element::{
-    Previous, add_stiffness, build_elements, eval_scalars, regular_stiffness,
+    Previous, STIFFNESS_BATCH, add_stiffness, build_elements, eval_scalars, regular_stiffness,
 };
 use crate::discretisation::xfem::faces::build_faces;
 use crate::error::SolveError;
@@ -136,9 +136,10 @@ impl Xfem {
     }
 
     /// Integrates the stiffness of the enriched elements still without one,
-    /// over at most `max_points` quadrature points (an element may take
-    /// several calls: near a tip one can have 20 000 points); returns
-    /// whether all have their stiffness now.
+    /// over about `max_points` quadrature points (whole batches of
+    /// `add_stiffness`, at least one: an element may take several calls,
+    /// near a tip one can have 20 000 points); returns whether all have
+    /// their stiffness now. The result does not depend on `max_points`.
     pub fn integrate(&mut self, max_points: usize) -> bool {
         let mut left = max_points;
         while left > 0
@@ -146,7 +147,11 @@ impl Xfem {
         {
             let slot = slot as usize;
             let (from, n) = (self.integrated_points, self.enriched[slot].qps.len());
-            let to = n.min(from.saturating_add(left));
+            // slices end on a batch of `add_stiffness` (the stiffness does
+            // not depend on the slicing), at least one batch a call
+            let to = n.min(
+                from.saturating_add(left.max(STIFFNESS_BATCH)) / STIFFNESS_BATCH * STIFFNESS_BATCH,
+            );
             let mut k = if from == 0 {
                 let nd = 2 * self.enriched[slot].scalars.len();
                 DMatrix::zeros(nd, nd)
@@ -163,7 +168,7 @@ impl Xfem {
                 &mut k,
             );
             self.enriched[slot].k = k;
-            left -= to - from;
+            left = left.saturating_sub(to - from);
             if to == n {
                 self.unintegrated.pop();
                 self.integrated_points = 0;

@@ -1215,56 +1215,65 @@ fn grown_layout(flaws: &[([[f64; 2]; 2], f64, f64)], max_contact: Option<usize>)
 /// fixed contact states and the states do not depend on the load's size.
 /// Checked against the same flaw with a face cohesion of 1 mPa (a Coulomb
 /// limit 1e-3 Pa above μ|p_N|, about 1e-10 of it), which solves every
-/// trial: a held-out 2.6 mm flaw at 33°, μ = 0.35, off the mesh lines, with
-/// secondary cracks, 8 steps. λ_cr agrees to 1e-6 at every step, every
+/// trial: a held-out 2.6 mm flaw at 33°, off the mesh lines, with
+/// secondary cracks, 8 steps, once with the product's contact (μ = 0.35,
+/// k_N = 100 E/h) and once with extreme friction on a stiff penalty
+/// (μ = 1.5, k_N = 10⁴ E/h). λ_cr agrees to 1e-6 at every step, every
 /// tip's position to 1e-9 m and its mode exactly; the contact counts are
 /// the same, every step converged.
 #[test]
 fn a_trial_without_face_cohesion_is_the_last_solve_scaled() {
-    let grow = |cohesion: f64| {
+    let grow = |cohesion: f64, friction: f64, stiff: bool| {
         let mut s = bundled("specimen_single_flaw");
         s.growth.max_steps = 8;
+        let h = s.specimen.width / s.mesh.nx as f64;
         let (c, half, deg) = ([0.014_63, 0.015_41], 0.0013, 33.0_f64);
         let (dx, dy) = (half * deg.to_radians().cos(), half * deg.to_radians().sin());
         s.cracks = vec![CrackSpec {
             points: Some(vec![[c[0] - dx, c[1] - dy], [c[0] + dx, c[1] + dy]]),
-            friction: 0.35,
+            friction,
             cohesion,
+            normal_stiffness: stiff.then_some(1e4 * s.material.young / h),
             ..s.cracks[0].clone()
         }];
         let mut sim = Simulation::new(valid(s)).expect("valid");
         run(&mut sim);
         sim
     };
-    let (scaled, solved) = (grow(0.0), grow(1e-3));
-    let (a, b) = (scaled.history(), solved.history());
-    let n_scaled: usize = a.iter().map(|st| st.scaled_trials.len()).sum();
-    println!("{} steps, {n_scaled} scaled trials", a.len());
-    assert!(
-        n_scaled >= a.len() / 2,
-        "{n_scaled} scaled trials in {} steps",
-        a.len()
-    );
-    assert!(b.iter().all(|st| st.scaled_trials.is_empty()));
-    assert_eq!(a.len(), b.len());
-    for (x, y) in a.iter().zip(b) {
-        assert!(x.converged && y.converged, "step {}", x.step);
-        let d = rel(x.load_factor, y.load_factor);
-        assert!(
-            d < 1e-6,
-            "step {}: λ_cr {} against {}",
-            x.step,
-            x.load_factor,
-            y.load_factor
+    for (friction, stiff) in [(0.35, false), (1.5, true)] {
+        let (scaled, solved) = (grow(0.0, friction, stiff), grow(1e-3, friction, stiff));
+        let (a, b) = (scaled.history(), solved.history());
+        let n_scaled: usize = a.iter().map(|st| st.scaled_trials.len()).sum();
+        println!(
+            "μ = {friction}: {} steps, {n_scaled} scaled trials",
+            a.len()
         );
-        let counts = |st: &cdca::report::GrowthStepReport| {
-            (st.contact.open, st.contact.stick, st.contact.slip)
-        };
-        assert_eq!(counts(x), counts(y), "step {}", x.step);
-        assert_eq!(x.grown.len(), y.grown.len(), "step {}", x.step);
-        for (p, q) in x.grown.iter().zip(&y.grown) {
-            assert_eq!(p.mode, q.mode, "step {}", x.step);
-            assert!((p.x - q.x).hypot(p.y - q.y) < 1e-9, "step {}", x.step);
+        assert!(
+            n_scaled >= a.len() / 2,
+            "μ = {friction}: {n_scaled} scaled trials in {} steps",
+            a.len()
+        );
+        assert!(b.iter().all(|st| st.scaled_trials.is_empty()));
+        assert_eq!(a.len(), b.len(), "μ = {friction}");
+        for (x, y) in a.iter().zip(b) {
+            let at = format!("μ = {friction}, step {}", x.step);
+            assert!(x.converged && y.converged, "{at}");
+            let d = rel(x.load_factor, y.load_factor);
+            assert!(
+                d < 1e-6,
+                "{at}: λ_cr {} against {}",
+                x.load_factor,
+                y.load_factor
+            );
+            let counts = |st: &cdca::report::GrowthStepReport| {
+                (st.contact.open, st.contact.stick, st.contact.slip)
+            };
+            assert_eq!(counts(x), counts(y), "{at}");
+            assert_eq!(x.grown.len(), y.grown.len(), "{at}");
+            for (p, q) in x.grown.iter().zip(&y.grown) {
+                assert_eq!(p.mode, q.mode, "{at}");
+                assert!((p.x - q.x).hypot(p.y - q.y) < 1e-9, "{at}");
+            }
         }
     }
 }

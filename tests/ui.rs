@@ -1023,10 +1023,11 @@ fn relax_with_the_automaton_shows_the_field_before_convergence() {
 
 /// Run growth with an iterative solver (the automaton, which growth
 /// accelerates to multigrid-CG by default): every frame advances the run,
-/// with a new residual sample, a new solve, a new growth step, a chunk of
-/// the rebuild after growth (the cracked elements integrated over
+/// with a new residual sample, a new solve, a λ_cr trial taken by scaling
+/// the last solve (a new load factor printed), a new growth step, a chunk
+/// of the rebuild after growth (the cracked elements integrated over
 /// frames) or the field at λ_cr sampled (shown before the tips move on);
-/// every frame outside those two with new residual samples or a new step;
+/// every frame outside those with new residual samples or a new step;
 /// the progress line shows the sweeps and residual, or the rebuild.
 #[test]
 #[cfg_attr(
@@ -1045,7 +1046,12 @@ fn run_growth_with_an_iterative_solver_advances_every_frame() {
     h.run_steps(2);
     let progress = |h: &Harness<'_, WorkbenchApp>| {
         let s = h.state();
-        (s.growth_progress(), s.shown_field(), s.field_progress())
+        (
+            s.growth_progress(),
+            s.shown_field(),
+            s.field_progress(),
+            s.load_factor(),
+        )
     };
     let mut last = progress(&h);
     let (mut frames, mut sweeping) = (0, 0);
@@ -1054,8 +1060,11 @@ fn run_growth_with_an_iterative_solver_advances_every_frame() {
         let now = progress(&h);
         if h.state().run_mode() == RunMode::Growing {
             assert_ne!(now, last, "frame {frames}: the run did not advance");
-            let ((steps, samples, residual, rebuild), field, sampling) = now;
-            let solving = rebuild.is_none() && last.0.3.is_none() && field == last.1;
+            let ((steps, samples, residual, rebuild), field, sampling, lambda) = now;
+            let solving = rebuild.is_none()
+                && last.0.3.is_none()
+                && field == last.1
+                && lambda.to_bits() == last.3.to_bits();
             let swept = samples != last.0.1 || residual != last.0.2 || steps != last.0.0;
             assert!(
                 !solving || sampling.is_some() || swept,
@@ -1075,7 +1084,7 @@ fn run_growth_with_an_iterative_solver_advances_every_frame() {
     );
     assert!(
         h.query_by_label_contains(", residual").is_some()
-            || h.query_by_label_contains("integrating the cracked elements")
+            || h.query_by_label_contains("preparing the cracked plate")
                 .is_some()
             || h.state().run_mode() != RunMode::Growing,
         "progress line"

@@ -705,7 +705,7 @@ fn growth_progress(view: &crate::solution::SolutionView) -> String {
     let step = view.steps_done + 1;
     if let Some(done) = view.rebuild {
         return format!(
-            "step {step}: integrating the cracked elements' stiffness, {:.0}%",
+            "step {step}: preparing the cracked plate (stiffness, pattern, tip domains), {:.0}%",
             100.0 * done
         );
     }

@@ -97,6 +97,11 @@ impl TipDomains {
         true
     }
 
+    /// How many free tips' domains are made.
+    pub fn made(&self) -> usize {
+        self.tips.len()
+    }
+
     /// Whether these are the domains of `x` (made on a discretisation of
     /// the same cracks, mesh, enrichment and material).
     pub fn fits(&self, x: &Xfem) -> bool {

@@ -5,9 +5,11 @@
 use super::state::Simulation;
 use crate::contact::law::ContactState;
 use crate::discretisation::field::Field;
+use crate::fracture::tips::TipDomains;
 use crate::geometry::cracks::system_lengths;
 use crate::geometry::plane::P2;
 use crate::report::TipReport;
+use crate::scene::SolverKind;
 
 /// A crack-face integration point as the UI shows it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -102,13 +104,28 @@ impl Simulation {
         self.scratch.job.is_some()
     }
 
-    /// While the stiffness of the elements a growth step changed, or of a
-    /// new simulation's enriched elements, is being integrated (see
+    /// While a new discretisation (after a growth step, or a new
+    /// simulation's) is being prepared across calls (see
     /// [`advance_growth`](Self::advance_growth), [`relax`](Self::relax)):
-    /// the fraction done, in [0, 1).
+    /// the fraction done, in [0, 1), counting the stiffness integration of
+    /// the changed elements as one part, the direct solver's pattern as
+    /// another, and each free tip's interaction-integral domain as one.
     pub fn rebuild_progress(&self) -> Option<f64> {
-        let left = self.scratch.xfem.points_to_integrate();
-        (left > 0).then(|| 1.0 - left as f64 / self.scratch.rebuild_points.max(left) as f64)
+        let x = &self.scratch.xfem;
+        let left = x.points_to_integrate();
+        let integrated = 1.0 - left as f64 / self.scratch.rebuild_points.max(left).max(1) as f64;
+        let pattern = self.model.scene.solver.kind == SolverKind::Direct;
+        let pattern_made = pattern && x.has_pattern();
+        let tips: usize = x.funcs.cracks.iter().map(|c| c.free_tips().count()).sum();
+        let made = self
+            .scratch
+            .tip_domains
+            .as_ref()
+            .filter(|d| d.fits(x))
+            .map_or(0, TipDomains::made);
+        let parts = 1 + usize::from(pattern) + tips;
+        let done = integrated + f64::from(u8::from(pattern_made)) + made as f64;
+        (done < parts as f64).then(|| done / parts as f64)
     }
 
     /// Crack-face contact points with their state and tractions: those of

@@ -80,13 +80,7 @@ impl TipDomains {
     /// [`fit`](Self::fits)); `false` when every one was made already.
     pub fn make_next(&mut self, x: &Xfem) -> bool {
         let h = x.mesh.h();
-        let next = x
-            .funcs
-            .cracks
-            .iter()
-            .enumerate()
-            .flat_map(|(c, crack)| crack.free_tips().map(move |k| (c, k)))
-            .nth(self.tips.len());
+        let next = free_tips(x).nth(self.tips.len());
         let Some((c, k)) = next else {
             return false;
         };
@@ -97,9 +91,11 @@ impl TipDomains {
         true
     }
 
-    /// How many free tips' domains are made.
-    pub fn made(&self) -> usize {
-        self.tips.len()
+    /// Of `x`'s free tips, how many have their domain made in `kept` (none
+    /// when it does not [`fit`](Self::fits) `x`), and how many there are.
+    pub fn progress(kept: Option<&Self>, x: &Xfem) -> (usize, usize) {
+        let made = kept.filter(|d| d.fits(x)).map_or(0, |d| d.tips.len());
+        (made, free_tips(x).count())
     }
 
     /// Whether these are the domains of `x` (made on a discretisation of
@@ -128,6 +124,15 @@ impl TipDomains {
             .map(|(c, k, frame, d)| (*c, *k, *frame, d.sifs(&field, tractions)))
             .collect()
     }
+}
+
+/// The free tips of `x` (crack, tip), in the order their domains are made.
+fn free_tips(x: &Xfem) -> impl Iterator<Item = (usize, usize)> + '_ {
+    x.funcs
+        .cracks
+        .iter()
+        .enumerate()
+        .flat_map(|(c, crack)| crack.free_tips().map(move |k| (c, k)))
 }
 
 /// Smallest turn of a crack's polyline at a vertex, in degrees, that ends

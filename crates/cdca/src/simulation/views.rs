@@ -116,13 +116,7 @@ impl Simulation {
         let integrated = 1.0 - left as f64 / self.scratch.rebuild_points.max(left).max(1) as f64;
         let pattern = self.model.scene.solver.kind == SolverKind::Direct;
         let pattern_made = pattern && x.has_pattern();
-        let tips: usize = x.funcs.cracks.iter().map(|c| c.free_tips().count()).sum();
-        let made = self
-            .scratch
-            .tip_domains
-            .as_ref()
-            .filter(|d| d.fits(x))
-            .map_or(0, TipDomains::made);
+        let (made, tips) = TipDomains::progress(self.scratch.tip_domains.as_ref(), x);
         let parts = 1 + usize::from(pattern) + tips;
         let done = integrated + f64::from(u8::from(pattern_made)) + made as f64;
         (done < parts as f64).then(|| done / parts as f64)

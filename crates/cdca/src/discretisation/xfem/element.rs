@@ -221,8 +221,9 @@ pub(super) const STIFFNESS_BATCH: usize = 64;
 /// Adds `Σ_q Bᵀ D B w t` over the element's quadrature points `points`
 /// to `k` (over all of them: the element stiffness `K_e`).
 ///
-/// With `B`'s columns `(2a, 2a+1)` made of the scalar gradient
-/// `(g_x, g_y)` of function `a` ([`fill_b`]), the 2 × 2 block of functions
+/// With `B`'s columns `(2a, 2a+1)` the strains of the scalar gradient
+/// `(g_x, g_y)` of function `a` (`[[g_x, 0], [0, g_y], [g_y, g_x]]`), the
+/// 2 × 2 block of functions
 /// `a, b` is a combination of D's entries with the four moments
 /// `G_xx = Σ w t g_x g_xᵀ`, `G_xy = Σ w t g_x g_yᵀ`, `G_yx = G_xyᵀ` and
 /// `G_yy`, e.g. `K_{u_a u_b} = D₁₁ G_xx + D₁₃ G_xy + D₃₁ G_yx + D₃₃ G_yy`.
@@ -288,19 +289,6 @@ pub(super) fn add_stiffness(
     }
 }
 
-/// Strain-displacement matrix from scalar gradients: columns `(2s, 2s+1)`
-/// are `[[g_x, 0], [0, g_y], [g_y, g_x]]`.
-pub fn fill_b(grads: &[P2], b: &mut DMatrix<f64>) {
-    for (s, g) in grads.iter().enumerate() {
-        b[(0, 2 * s)] = g.x;
-        b[(1, 2 * s)] = 0.0;
-        b[(2, 2 * s)] = g.y;
-        b[(0, 2 * s + 1)] = 0.0;
-        b[(1, 2 * s + 1)] = g.y;
-        b[(2, 2 * s + 1)] = g.x;
-    }
-}
-
 /// Stiffness of an ordinary element (2×2 Gauss), shared by all of them.
 pub(super) fn regular_stiffness(m: &Mesh, el: &Elastic, t: f64) -> SMatrix<f64, 8, 8> {
     let mut q = Vec::new();
@@ -327,6 +315,19 @@ mod tests {
     use crate::discretisation::model::Model;
     use crate::scene::Scene;
     use nalgebra::Matrix3;
+
+    /// Strain-displacement matrix from scalar gradients: columns
+    /// `(2s, 2s+1)` are `[[g_x, 0], [0, g_y], [g_y, g_x]]`.
+    fn fill_b(grads: &[P2], b: &mut DMatrix<f64>) {
+        for (s, g) in grads.iter().enumerate() {
+            b[(0, 2 * s)] = g.x;
+            b[(1, 2 * s)] = 0.0;
+            b[(2, 2 * s)] = g.y;
+            b[(0, 2 * s + 1)] = 0.0;
+            b[(1, 2 * s + 1)] = g.y;
+            b[(2, 2 * s + 1)] = g.x;
+        }
+    }
 
     /// The stiffness from the gradient moments equals `Σ Bᵀ D B w t` summed
     /// point by point, for a full (anisotropic) D whose shear couplings

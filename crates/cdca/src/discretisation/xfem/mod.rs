@@ -31,7 +31,7 @@ use crate::geometry::mesh::Mesh;
 use crate::geometry::plane::P2;
 
 pub use classify::{ScalarFn, XfemParams, prepare_cracks};
-pub use element::{EnrichedElement, REGULAR, fill_b};
+pub use element::{EnrichedElement, REGULAR};
 pub use faces::{FACE_ORDER, FacePoint, MIN_TIP_PIECE};
 
 /// Panic message for a solver given a discretisation built with

@@ -32,6 +32,11 @@ use crate::view::{AppView, RunStatus, ViewState};
 /// Solver work per frame (the rest of a 60 Hz frame is left to drawing).
 pub const FRAME_BUDGET: Duration = Duration::from_millis(12);
 
+/// A drag that rests this long (the pointer held still, the button still
+/// down) has its scene solved, where a quick solve re-solves edits: the
+/// field shows the dragged crack before the release.
+pub const DRAG_REST: Duration = Duration::from_millis(150);
+
 /// How the app starts.
 #[derive(Clone, Debug)]
 pub struct Options {
@@ -122,6 +127,9 @@ pub struct WorkbenchApp {
     pub(crate) last_edited_crack: Option<usize>,
     /// A drag of the scene is under way (its edits are `ongoing`).
     pub(crate) dragging: bool,
+    /// When the drag's last edit was made, until its scene is solved (after
+    /// [`DRAG_REST`] of rest, or on release).
+    pub(crate) drag_edited_at: Option<Instant>,
     /// A job the command line asked for, started once the first solve has
     /// freed the slot.
     pub(crate) queued: Option<Command>,
@@ -166,6 +174,7 @@ impl WorkbenchApp {
             opened_scene,
             last_edited_crack: None,
             dragging: false,
+            drag_edited_at: None,
             queued: None,
             frame_stats: FrameStats::default(),
             frame_start: None,
@@ -443,6 +452,7 @@ impl WorkbenchApp {
                 _ => {}
             }
         }
+        self.solve_resting_drag(ctx);
         self.finish_screenshot(ctx);
         self.run_tasks();
         // the job that waited (the banner said so), or the command line's

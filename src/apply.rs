@@ -2,8 +2,9 @@
 //! solver actions and exports.
 
 use cdca::scene::SceneFile;
+use web_time::Instant;
 
-use crate::app::WorkbenchApp;
+use crate::app::{DRAG_REST, WorkbenchApp};
 use crate::command::{Command, Export, PlotFormat};
 use crate::compare::Race;
 use crate::figure::Figure;
@@ -50,7 +51,10 @@ impl WorkbenchApp {
             Command::EndDrag => {
                 self.dragging = false;
                 self.undo.end_coalescing();
-                self.scene_changed(false);
+                // a drag solved while it rested is not solved again
+                if self.drag_edited_at.take().is_some() || self.runner.is_stale() {
+                    self.scene_changed(false);
+                }
             }
             Command::OpenSceneText { source, text } => self.open_scene_text(source, &text),
             Command::OpenLink(link) => self.open_link(&link),
@@ -293,9 +297,28 @@ impl WorkbenchApp {
         }
     }
 
+    /// A drag that has rested for [`DRAG_REST`] is solved as a release
+    /// would solve it (if the scene solves quickly); until then, a repaint
+    /// is asked for when the rest would be over.
+    pub(crate) fn solve_resting_drag(&mut self, ctx: &egui::Context) {
+        let Some(at) = self.drag_edited_at.filter(|_| self.dragging) else {
+            return;
+        };
+        if !(self.options.auto_solve && self.runner.solve_is_quick(&self.scene)) {
+            return;
+        }
+        if let Some(left) = DRAG_REST.checked_sub(at.elapsed()) {
+            ctx.request_repaint_after(left);
+        } else if self.runner.checked().is_ok() {
+            // (an invalid scene waits for the release, which says why)
+            self.drag_edited_at = None;
+            self.auto_solve();
+        }
+    }
+
     /// The edited scene changed. While a drag goes on, the old solution is
-    /// hidden; when it ends, the simulation is rebuilt and re-solved if that
-    /// is quick.
+    /// hidden; when it ends, or rests for [`crate::app::DRAG_REST`], the
+    /// simulation is rebuilt and re-solved if that is quick.
     fn scene_changed(&mut self, ongoing: bool) {
         self.race = None;
         self.selected_tip = None;
@@ -308,6 +331,7 @@ impl WorkbenchApp {
             self.editor.selected_crack = None;
         }
         let valid = self.runner.invalidate(&self.scene);
+        self.drag_edited_at = ongoing.then(Instant::now);
         if !ongoing {
             let ok = valid.is_ok();
             self.show_validity(valid);

@@ -198,6 +198,90 @@ fn dragging_a_tip_moves_it_in_one_undo_step() {
     );
 }
 
+/// A drag that rests with the button down is solved before the release,
+/// as `cdca solve` solves the dragged scene (K to 1e-9 relative), and the
+/// release does not solve it again; while the pointer moves, nothing is
+/// solved.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn a_drag_that_rests_is_solved_before_the_release() {
+    let mut h = harness(Options::default());
+    h.run_steps(20);
+    assert!(h.state().is_solved());
+    let tip = h.state().scene().cracks[0]
+        .points
+        .clone()
+        .unwrap_or_default()[1];
+    let w = h.state().scene().specimen.width;
+    // a generic position: inside an element, the crack at an odd angle
+    let target = [0.613 * w, 0.577 * w];
+    let from = h.state().screen_from_world(tip);
+    let to = h.state().screen_from_world(target);
+    h.event(Event::PointerMoved(from));
+    h.event(Event::PointerButton {
+        pos: from,
+        button: PointerButton::Primary,
+        pressed: true,
+        modifiers: Modifiers::NONE,
+    });
+    for k in 1..=8 {
+        h.event(Event::PointerMoved(from + (to - from) * (k as f32 / 8.0)));
+        h.step();
+    }
+    // (a held button repaints every frame: no `run`, which waits for rest)
+    h.run_steps(3);
+    assert!(!h.state().is_solved(), "no solve while the pointer moves");
+    assert_eq!(h.state().shown_field(), None, "the old field is hidden");
+
+    std::thread::sleep(cdca_workbench::app::DRAG_REST);
+    h.run_steps(30);
+    let app = h.state();
+    assert!(app.is_solved(), "solved while the drag rests");
+    let shown = app.shown_field().expect("the field of the dragged scene");
+    let scene = cdca::Scene::try_from(app.scene().clone()).expect("valid scene");
+    let mut headless = cdca::Simulation::new(scene).expect("a simulation");
+    headless.set_load_factor(1.0);
+    let report = headless.solve().expect("the dragged scene solves");
+    assert!(
+        app.tips()
+            .iter()
+            .any(|t| (t.x - target[0]).abs() < 3e-3 * w && (t.y - target[1]).abs() < 3e-3 * w),
+        "a tip where the drag rests: {:?}",
+        app.tips().iter().map(|t| (t.x, t.y)).collect::<Vec<_>>()
+    );
+    assert_eq!(app.tips().len(), report.tips.len());
+    for (a, b) in app.tips().iter().zip(&report.tips) {
+        let scale = b.k1.abs().max(b.k2.abs());
+        assert!(
+            (a.k1 - b.k1).abs() <= 1e-9 * scale && (a.k2 - b.k2).abs() <= 1e-9 * scale,
+            "tip ({}, {}): K_I {} vs {}, K_II {} vs {}",
+            b.x,
+            b.y,
+            a.k1,
+            b.k1,
+            a.k2,
+            b.k2
+        );
+    }
+
+    h.event(Event::PointerButton {
+        pos: to,
+        button: PointerButton::Primary,
+        pressed: false,
+        modifiers: Modifiers::NONE,
+    });
+    h.run_steps(5);
+    assert!(h.state().is_solved());
+    assert_eq!(
+        h.state().shown_field(),
+        Some(shown),
+        "the release does not solve the rested scene again"
+    );
+}
+
 #[test]
 fn a_bad_scene_file_shows_an_error_and_keeps_the_scene() {
     let mut h = harness(no_solver());

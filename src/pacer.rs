@@ -16,6 +16,8 @@ const SHARE_OF_WHAT_IS_LEFT: f64 = 0.25;
 pub struct Pacer {
     per_call: usize,
     fixed: Option<usize>,
+    /// The longest call since the last [`restart`](Self::restart).
+    longest: Duration,
 }
 
 impl Default for Pacer {
@@ -23,6 +25,7 @@ impl Default for Pacer {
         Self {
             per_call: 1,
             fixed: None,
+            longest: Duration::ZERO,
         }
     }
 }
@@ -48,6 +51,20 @@ impl Pacer {
     /// simulation is unknown.
     pub fn restart(&mut self) {
         self.per_call = 1;
+        self.longest = Duration::ZERO;
+    }
+
+    /// A call that cannot be split and may take as long as the longest one
+    /// so far (a numeric factorisation) comes next: whether to leave it to
+    /// the next frame, because it would overrun this one. If so, that call
+    /// is one sweep, so that the frame holds the factorisation and little
+    /// else.
+    pub fn defer_long_call(&mut self, deadline: Instant) -> bool {
+        let defer = self.fixed.is_none() && Instant::now() + self.longest >= deadline;
+        if defer {
+            self.per_call = 1;
+        }
+        defer
     }
 
     /// After a call of `sweeps` sweeps that started at `start`: whether
@@ -63,6 +80,7 @@ impl Pacer {
         }
         let now = Instant::now();
         let took = now - start;
+        self.longest = self.longest.max(took);
         let fits = now + took < deadline;
         if sweeps > 0 {
             if now >= deadline {
@@ -110,5 +128,23 @@ mod tests {
         p.set_fixed(None);
         p.restart();
         assert_eq!(p.sweeps(), 1);
+    }
+
+    /// After a 20 ms call, a long call is left to the next frame when 10 ms
+    /// are left (and comes as one sweep), not when 1 s is; after a restart
+    /// (a new simulation) nothing is known to be long.
+    #[test]
+    fn a_long_call_is_left_to_the_next_frame_when_it_would_overrun() {
+        let mut p = Pacer::default();
+        let start = Instant::now();
+        p.another_fits(start, 64, start + Duration::from_secs(1));
+        p.longest = Duration::from_millis(20);
+        p.per_call = 64;
+        assert!(!p.defer_long_call(Instant::now() + Duration::from_secs(1)));
+        assert_eq!(p.sweeps(), 64);
+        assert!(p.defer_long_call(Instant::now() + Duration::from_millis(10)));
+        assert_eq!(p.sweeps(), 1);
+        p.restart();
+        assert!(!p.defer_long_call(Instant::now() + Duration::from_millis(10)));
     }
 }

@@ -3,6 +3,7 @@
 //! and growth, which ends with the solve of the final cracks at the last
 //! step's load factor.
 
+use cdca::scene::SolverKind;
 use cdca::{RelaxStatus, Simulation, SolveError};
 use web_time::Instant;
 
@@ -151,6 +152,7 @@ impl Growth {
                 self.final_solve = true;
                 continue;
             } else {
+                let preparing = sim.rebuild_progress().is_some();
                 let report = sim.advance_growth(n)?;
                 let one_done = self
                     .one_step_after
@@ -163,6 +165,19 @@ impl Growth {
                 }
                 if sim.at_step_load() {
                     // the step's solved state is shown before its tips move
+                    return Ok(Slice {
+                        progress: Progress::Working,
+                        status,
+                    });
+                }
+                // a new discretisation is ready: the direct solver's first
+                // call on it factorises, in one call, so it opens a frame
+                // unless it fits in what is left of this one
+                if preparing
+                    && sim.rebuild_progress().is_none()
+                    && sim.scene().solver.kind == SolverKind::Direct
+                    && pacer.defer_long_call(deadline)
+                {
                     return Ok(Slice {
                         progress: Progress::Working,
                         status,

@@ -62,6 +62,12 @@ pub trait LinearSolver {
     /// The started solve so far.
     fn info(&self) -> LinearInfo;
 
+    /// The last [`start`](Self::start) factorised the matrix (a call that
+    /// cannot be split: the workbench gives it a frame slice of its own).
+    fn factorised_at_start(&self) -> bool {
+        false
+    }
+
     /// Progress samples of the started solve with their times, s (setup
     /// included).
     fn samples(&self) -> &[ResidualSample];
@@ -132,6 +138,8 @@ pub struct DirectSolver {
     samples: Vec<ResidualSample>,
     /// Setup time of the started solve, s.
     setup_seconds: f64,
+    /// The started solve's setup factorised (no kept factor served).
+    factorised_at_start: bool,
 }
 
 impl DirectSolver {
@@ -224,6 +232,7 @@ impl LinearSolver for DirectSolver {
         matrix_changed: bool,
     ) -> Result<(), SolveError> {
         let clock = Instant::now();
+        self.factorised_at_start = false;
         if matrix_changed || self.factors.is_empty() {
             let pattern = x.pattern()?;
             if let Some(i) = self
@@ -236,6 +245,7 @@ impl LinearSolver for DirectSolver {
                 self.factors[..=i].rotate_right(1);
             } else {
                 self.refactor(x, blocks)?;
+                self.factorised_at_start = true;
             }
         }
         self.f.clear();
@@ -300,6 +310,10 @@ impl LinearSolver for DirectSolver {
             converged: self.status.converged,
             history: self.samples.iter().map(|s| s.residual).collect(),
         }
+    }
+
+    fn factorised_at_start(&self) -> bool {
+        self.factorised_at_start
     }
 
     fn samples(&self) -> &[ResidualSample] {

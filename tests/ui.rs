@@ -96,7 +96,9 @@ fn click_at(h: &mut Harness<'_, WorkbenchApp>, pos: Pos2) {
     h.run();
 }
 
-fn drag(h: &mut Harness<'_, WorkbenchApp>, from: Pos2, to: Pos2) {
+/// Presses the primary button at `from` and moves to `to` in eight frames,
+/// the button held.
+fn press_and_move(h: &mut Harness<'_, WorkbenchApp>, from: Pos2, to: Pos2) {
     h.event(Event::PointerMoved(from));
     h.event(Event::PointerButton {
         pos: from,
@@ -106,14 +108,32 @@ fn drag(h: &mut Harness<'_, WorkbenchApp>, from: Pos2, to: Pos2) {
     });
     for k in 1..=8 {
         h.event(Event::PointerMoved(from + (to - from) * (k as f32 / 8.0)));
+        h.step();
     }
+}
+
+fn release(h: &mut Harness<'_, WorkbenchApp>, at: Pos2) {
     h.event(Event::PointerButton {
-        pos: to,
+        pos: at,
         button: PointerButton::Primary,
         pressed: false,
         modifiers: Modifiers::NONE,
     });
+}
+
+fn drag(h: &mut Harness<'_, WorkbenchApp>, from: Pos2, to: Pos2) {
+    press_and_move(h, from, to);
+    release(h, to);
     h.run();
+}
+
+/// The end point of the first crack's first segment (a tip of the default
+/// scene's flaw).
+fn first_tip(h: &Harness<'_, WorkbenchApp>) -> [f64; 2] {
+    h.state().scene().cracks[0]
+        .points
+        .clone()
+        .unwrap_or_default()[1]
 }
 
 #[test]
@@ -169,29 +189,20 @@ fn drawing_a_crack_by_clicks_adds_a_crack() {
 fn dragging_a_tip_moves_it_in_one_undo_step() {
     let mut h = harness(no_solver());
     h.run();
-    let tip = h.state().scene().cracks[0]
-        .points
-        .clone()
-        .unwrap_or_default()[1];
+    let tip = first_tip(&h);
     let w = h.state().scene().specimen.width;
     let target = [0.73 * w, 0.53 * w];
     let from = h.state().screen_from_world(tip);
     let to = h.state().screen_from_world(target);
     drag(&mut h, from, to);
-    let moved = h.state().scene().cracks[0]
-        .points
-        .clone()
-        .unwrap_or_default()[1];
+    let moved = first_tip(&h);
     assert!(
         (moved[0] - target[0]).abs() < 3e-3 * w && (moved[1] - target[1]).abs() < 3e-3 * w,
         "tip at {moved:?}"
     );
     h.get_by_label("Undo").click();
     h.run();
-    let back = h.state().scene().cracks[0]
-        .points
-        .clone()
-        .unwrap_or_default()[1];
+    let back = first_tip(&h);
     assert_eq!(
         back, tip,
         "one undo step returns the tip to where the drag started"
@@ -211,26 +222,12 @@ fn a_drag_that_rests_is_solved_before_the_release() {
     let mut h = harness(Options::default());
     h.run_steps(20);
     assert!(h.state().is_solved());
-    let tip = h.state().scene().cracks[0]
-        .points
-        .clone()
-        .unwrap_or_default()[1];
     let w = h.state().scene().specimen.width;
     // a generic position: inside an element, the crack at an odd angle
     let target = [0.613 * w, 0.577 * w];
-    let from = h.state().screen_from_world(tip);
+    let from = h.state().screen_from_world(first_tip(&h));
     let to = h.state().screen_from_world(target);
-    h.event(Event::PointerMoved(from));
-    h.event(Event::PointerButton {
-        pos: from,
-        button: PointerButton::Primary,
-        pressed: true,
-        modifiers: Modifiers::NONE,
-    });
-    for k in 1..=8 {
-        h.event(Event::PointerMoved(from + (to - from) * (k as f32 / 8.0)));
-        h.step();
-    }
+    press_and_move(&mut h, from, to);
     // (a held button repaints every frame: no `run`, which waits for rest)
     h.run_steps(3);
     assert!(!h.state().is_solved(), "no solve while the pointer moves");
@@ -267,12 +264,7 @@ fn a_drag_that_rests_is_solved_before_the_release() {
         );
     }
 
-    h.event(Event::PointerButton {
-        pos: to,
-        button: PointerButton::Primary,
-        pressed: false,
-        modifiers: Modifiers::NONE,
-    });
+    release(&mut h, to);
     h.run_steps(5);
     assert!(h.state().is_solved());
     assert_eq!(

@@ -51,8 +51,9 @@ impl WorkbenchApp {
             Command::EndDrag => {
                 self.dragging = false;
                 self.undo.end_coalescing();
-                // a drag solved while it rested is not solved again
-                if self.drag_edited_at.take().is_some() || self.runner.is_stale() {
+                // a drag solved while it rested (or that edited nothing) is
+                // not solved again
+                if self.runner.is_stale() {
                     self.scene_changed(false);
                 }
             }

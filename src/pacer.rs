@@ -130,21 +130,26 @@ mod tests {
         assert_eq!(p.sweeps(), 1);
     }
 
-    /// After a 20 ms call, a long call is left to the next frame when 10 ms
-    /// are left (and comes as one sweep), not when 1 s is; after a restart
-    /// (a new simulation) nothing is known to be long.
+    /// After a call of 20 ms (started 20 ms ago), a long call is left to
+    /// the next frame when 10 ms are left (and comes as one sweep), not
+    /// when 1 s is; after a restart (a new simulation) nothing is known to
+    /// be long.
     #[test]
     fn a_long_call_is_left_to_the_next_frame_when_it_would_overrun() {
+        let ms = Duration::from_millis;
         let mut p = Pacer::default();
-        let start = Instant::now();
-        p.another_fits(start, 64, start + Duration::from_secs(1));
-        p.longest = Duration::from_millis(20);
-        p.per_call = 64;
-        assert!(!p.defer_long_call(Instant::now() + Duration::from_secs(1)));
-        assert_eq!(p.sweeps(), 64);
-        assert!(p.defer_long_call(Instant::now() + Duration::from_millis(10)));
+        let far = Instant::now() + ms(1000);
+        let start = Instant::now()
+            .checked_sub(ms(20))
+            .expect("20 ms after boot");
+        assert!(p.another_fits(start, 64, far));
+        let sized = p.sweeps();
+        assert!(sized > 1, "sized to what is left: {sized}");
+        assert!(!p.defer_long_call(far));
+        assert_eq!(p.sweeps(), sized);
+        assert!(p.defer_long_call(Instant::now() + ms(10)));
         assert_eq!(p.sweeps(), 1);
         p.restart();
-        assert!(!p.defer_long_call(Instant::now() + Duration::from_millis(10)));
+        assert!(!p.defer_long_call(Instant::now() + ms(10)));
     }
 }

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Held-out flaw pairs (docs/fracture-model.md, "Coalescence"): 8 pairs of each
 # layout (coplanar, stepped, overlapping) drawn at random, with a fixed seed,
+# and the overlapping pairs once more with the second flaw reflected across
+# the first flaw's line (the other step-over: "overlapping, mirrored"),
 # across the range of issue 34: flaws 3-4 mm long at 35-60° to the
 # horizontal, face friction 0-0.6, a bridge between the facing tips of
 # 0.7-1.3 flaw lengths; centred in the 30 mm specimen of the bundled pairs
@@ -28,11 +30,17 @@ def pair(layout, length, deg, bridge):
     """The two flaws' end points (m), the pair centred in the specimen. The
     bridge runs from the first flaw's upper end to the second flaw's lower
     end: along the flaws (coplanar), up and slightly back, as in the bundled
-    stepped pair (stepped), or down across the flaws, as in the bundled
-    overlapping pair (overlapping)."""
+    stepped pair (stepped), down across the flaws, as in the bundled
+    overlapping pair (overlapping: the second flaw on the side of the first
+    that its faces' slip makes a restraining step-over), or that direction
+    reflected across the first flaw's line (overlapping, mirrored: a
+    releasing step-over)."""
     e = unit(deg)
     a0, a1 = (0.0, 0.0), (length * e[0], length * e[1])
-    d = {"coplanar": e, "stepped": (-0.177, 0.984), "overlapping": (0.2, -0.98)}[layout]
+    d = {"coplanar": e, "stepped": (-0.177, 0.984)}.get(layout, (0.2, -0.98))
+    if layout == "overlapping, mirrored":
+        c, s = math.cos(2 * math.radians(deg)), math.sin(2 * math.radians(deg))
+        d = (c * d[0] + s * d[1], s * d[0] - c * d[1])
     b0 = (a1[0] + bridge * d[0], a1[1] + bridge * d[1])
     b1 = (b0[0] + length * e[0], b0[1] + length * e[1])
     pts = [a0, a1, b0, b1]
@@ -41,9 +49,11 @@ def pair(layout, length, deg, bridge):
     shift = lambda p: [0.5 * W + p[0] - cx, 0.5 * W + p[1] - cy]
     return [[shift(a0), shift(a1)], [shift(b0), shift(b1)]]
 
+LAYOUTS = ("coplanar", "stepped", "overlapping", "overlapping, mirrored")
 runs = []
-for k, layout in enumerate(("coplanar", "stepped", "overlapping")):
-    rng = random.Random(34 + k)
+for k, layout in enumerate(LAYOUTS):
+    # the mirrored pairs are the overlapping draws
+    rng = random.Random(34 + min(k, 2))
     for _ in range(8):
         length = rng.uniform(3e-3, 4e-3)
         runs.append((layout, length, rng.uniform(35, 60), round(rng.uniform(0, 0.6), 2),
@@ -54,7 +64,7 @@ def grow(run):
     scene = json.loads(json.dumps(base))
     scene["name"] = f"held-out {layout} pair"
     scene["cracks"] = [{"points": p, "friction": mu} for p in pair(layout, length, deg, ratio * length)]
-    path = f"bench-out/pairs/{layout}_{length * 1e3:.2f}_{deg:.1f}_{mu}_{ratio:.2f}.json"
+    path = f"bench-out/pairs/{layout.replace(', ', '_')}_{length * 1e3:.2f}_{deg:.1f}_{mu}_{ratio:.2f}.json"
     json.dump(scene, open(path, "w"), indent=1)
     # exit 1 (a step that did not converge) still prints the history
     return json.loads(subprocess.run(["./target/release/cdca", "grow", path],
@@ -63,7 +73,7 @@ def grow(run):
 with ThreadPoolExecutor(int(os.environ["JOBS"])) as pool:
     reports = list(pool.map(grow, runs))
 rows = []
-print(f"{'layout':12s} {'mm':>4s} {'angle':>5s} {'mu':>4s} {'bridge':>6s}  {'outcome':14s} {'steps':>5s} "
+print(f"{'layout':21s} {'mm':>4s} {'angle':>5s} {'mu':>4s} {'bridge':>6s}  {'outcome':14s} {'steps':>5s} "
       f"{'converged':>9s} {'secondary':>9s}  first coalescence")
 for (layout, length, deg, mu, ratio), report in zip(runs, reports):
     converged = all(s["converged"] for s in report["steps"])
@@ -73,7 +83,7 @@ for (layout, length, deg, mu, ratio), report in zip(runs, reports):
     rows.append([layout, f"{length * 1e3:.2f}", f"{deg:.1f}", mu, f"{ratio:.2f}", report["outcome"],
                  len(report["steps"]), converged, secondary, c["step"] if c else "",
                  f"{c['load_factor']:.3f}" if c else "", c["category"] if c else ""])
-    print(f"{layout:12s} {length * 1e3:4.2f} {deg:5.1f} {mu:4.2f} {ratio:6.2f}  {report['outcome']:14s} "
+    print(f"{layout:21s} {length * 1e3:4.2f} {deg:5.1f} {mu:4.2f} {ratio:6.2f}  {report['outcome']:14s} "
           f"{len(report['steps']):5d} {str(converged):>9s} {secondary:9d}  {link}", flush=True)
 with open("bench-out/pairs.csv", "w", newline="") as f:
     w = csv.writer(f)
@@ -85,7 +95,7 @@ with open("bench-out/pairs.csv", "w", newline="") as f:
 # markers through `bash scripts/docs.sh`
 out = os.path.join(os.environ.get("CARGO_TARGET_DIR", "target"), "docs", "held-out-pairs")
 os.makedirs(out, exist_ok=True)
-for key, layout in enumerate(("coplanar", "stepped", "overlapping")):
+for key, layout in enumerate(LAYOUTS):
     mine = [r for r in rows if r[0] == layout]
     firsts = sorted(r[9] for r in mine if r[9] != "")
     linked = f"{len(firsts)}"
@@ -100,7 +110,7 @@ for key, layout in enumerate(("coplanar", "stepped", "overlapping")):
     for r in mine:
         outcomes[r[5]] = outcomes.get(r[5], 0) + 1
     text = ", ".join(f"{n} {o}" for o, n in sorted(outcomes.items(), key=lambda x: (-x[1], x[0])))
-    with open(os.path.join(out, f"{key + 1}-{layout}.md"), "w") as f:
+    with open(os.path.join(out, f"{key + 1}-{layout.replace(', ', '-')}.md"), "w") as f:
         f.write(f"| {layout} | {len(mine)} | {linked} | {how} | {sum(r[7] for r in mine)} | {text} |\n")
 print(f"wrote bench-out/pairs.csv and {out}/")
 PY

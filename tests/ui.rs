@@ -1955,12 +1955,16 @@ fn crack_loop() -> cdca::scene::SceneFile {
     s
 }
 
-/// [`crack_loop`] grown headless until secondary cracks start (at both
-/// corners, at the second load step), as File ▸ Save writes it: the grown
-/// cracks and `growth.resume`, whose lineage says which are secondary.
-/// Returns the file and that lineage's verdict per crack.
+/// [`crack_loop`] in a rock of 30° internal friction (with the bundled
+/// 49°, the secondary cracks' envelope, the corners never start one) grown
+/// headless until secondary cracks start (at both corners, at the second
+/// load step), as File ▸ Save writes it: the grown cracks and
+/// `growth.resume`, whose lineage says which are secondary. Returns the
+/// file and that lineage's verdict per crack.
 fn loop_with_secondary_cracks() -> (String, Vec<bool>) {
-    let scene = cdca::scene::Scene::try_from(crack_loop()).expect("a valid scene");
+    let mut file = crack_loop();
+    file.material.friction_angle_deg = 30.0;
+    let scene = cdca::scene::Scene::try_from(file).expect("a valid scene");
     let mut sim = cdca::Simulation::new(scene).expect("a simulation");
     while !sim.lineage().iter().any(cdca::scene::Lineage::is_secondary) {
         assert!(

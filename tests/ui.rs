@@ -249,20 +249,7 @@ fn a_drag_that_rests_is_solved_before_the_release() {
         "a tip where the drag rests: {:?}",
         app.tips().iter().map(|t| (t.x, t.y)).collect::<Vec<_>>()
     );
-    assert_eq!(app.tips().len(), report.tips.len());
-    for (a, b) in app.tips().iter().zip(&report.tips) {
-        let scale = b.k1.abs().max(b.k2.abs());
-        assert!(
-            (a.k1 - b.k1).abs() <= 1e-9 * scale && (a.k2 - b.k2).abs() <= 1e-9 * scale,
-            "tip ({}, {}): K_I {} vs {}, K_II {} vs {}",
-            b.x,
-            b.y,
-            a.k1,
-            b.k1,
-            a.k2,
-            b.k2
-        );
-    }
+    field::assert_same_sifs(app.tips(), &report.tips, "the rested drag");
 
     release(&mut h, to);
     h.run_steps(5);

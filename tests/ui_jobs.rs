@@ -93,23 +93,7 @@ fn assert_cli_answer(h: &Harness<'_, WorkbenchApp>, json: &str, when: &str) {
     let theirs: Vec<cdca::ContactState> = cli.contact_points().iter().map(|c| c.state).collect();
     assert!(!theirs.is_empty(), "{when}: a crack with face points");
     assert_eq!(app.contact_states(), theirs, "{when}: contact states");
-    let (ours, theirs) = (app.tips(), cli.tips());
-    assert_eq!(ours.len(), theirs.len(), "{when}: free tips");
-    let scale = theirs
-        .iter()
-        .map(|t| t.k1.abs().max(t.k2.abs()))
-        .fold(0.0, f64::max);
-    assert!(scale > 0.0, "{when}: loaded tips");
-    for (a, b) in ours.iter().zip(theirs) {
-        assert!(
-            (a.k1 - b.k1).abs() <= 1e-9 * scale && (a.k2 - b.k2).abs() <= 1e-9 * scale,
-            "{when}: K {} {} vs {} {}",
-            a.k1,
-            a.k2,
-            b.k1,
-            b.k2
-        );
-    }
+    field::assert_same_sifs(app.tips(), cli.tips(), when);
 }
 
 /// Same scene, same answer. Solve used to start from the last solved state

@@ -1,5 +1,5 @@
-//! The field the workbench's canvas shows against a headless simulation of
-//! the same state (shared by the UI tests).
+//! What the workbench shows (the canvas's field, the tips' K) against a
+//! headless simulation of the same state (shared by the UI tests).
 
 use cdca::Simulation;
 use cdca_workbench::WorkbenchApp;
@@ -45,4 +45,32 @@ pub fn assert_shown_field_is(
         scale > 0.0 && compared > min_samples,
         "{compared} samples compared"
     );
+}
+
+/// The same K_I and K_II at every free tip, in the same order: to 1e-9 of
+/// the largest |K| of `theirs` (the same direct solve from the same start;
+/// only the summation order of a warm start could differ).
+pub fn assert_same_sifs(
+    ours: &[cdca::report::TipReport],
+    theirs: &[cdca::report::TipReport],
+    when: &str,
+) {
+    assert_eq!(ours.len(), theirs.len(), "{when}: free tips");
+    let scale = theirs
+        .iter()
+        .map(|t| t.k1.abs().max(t.k2.abs()))
+        .fold(0.0, f64::max);
+    assert!(scale > 0.0, "{when}: loaded tips");
+    for (a, b) in ours.iter().zip(theirs) {
+        assert!(
+            (a.k1 - b.k1).abs() <= 1e-9 * scale && (a.k2 - b.k2).abs() <= 1e-9 * scale,
+            "{when}: tip ({}, {}): K {} {} vs {} {}",
+            b.x,
+            b.y,
+            a.k1,
+            a.k2,
+            b.k1,
+            b.k2
+        );
+    }
 }

@@ -879,26 +879,21 @@ fn drawn_flaws_grow_wings_with_the_default_contact() {
 /// friction at 48.9–54.5°.
 #[test]
 fn first_growth_over_the_flaw_range_follows_the_closed_form() {
-    let (len, h) = (0.0035, 0.0005);
+    let len = RANGE_FLAW;
     let mut failures = Vec::new();
     // the largest distance of a tension angle from the closed form, and the
     // drives (τ − μσ_n over σ) of the flaws that start in shear
     let (mut off_closed_form, mut shear_drives) = (0.0f64, Vec::new());
-    for deg in [30.0, 35.0, 40.0, 45.0, 50.0, 55.0, 60.0] {
-        let t = f64::to_radians(deg);
+    for deg in RANGE_ANGLES {
         let mut last_tension: Option<f64> = None;
         let mut cells = vec![format!("{deg}°")];
-        for mu in [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6] {
-            // τ − μσ_n per unit load
-            let drive = t.sin() * t.cos() - mu * t.cos() * t.cos();
+        for mu in RANGE_FRICTIONS {
+            let drive = sliding_drive(deg, mu);
             if drive <= 0.0 {
                 cells.push("(faces stuck)".into());
                 continue;
             }
-            let mut s = bundled("specimen_single_flaw");
-            let mut crack = centre_crack(0.015 + 0.37 * h, 0.015 + 0.21 * h, 0.5 * len, deg);
-            crack.friction = mu;
-            s.cracks = vec![crack];
+            let mut s = range_flaw_scene(deg, mu);
             s.growth.max_steps = 1;
             let mut sim = Simulation::new(valid(s)).expect("valid");
             let step = sim.grow_step().expect("growth step");
@@ -962,18 +957,15 @@ fn first_growth_over_the_flaw_range_follows_the_closed_form() {
 /// wings 3.85–4.15 flaw lengths, ending 0.0–5.9° from the load axis.
 #[test]
 fn the_whole_flaw_range_grows_wings_to_the_load_axis() {
-    let (len, h) = (0.0035, 0.0005);
     let mut failures = Vec::new();
     let (mut runs, mut all_converged) = (0, 0);
     let (mut l_lo, mut l_hi, mut e_lo, mut e_hi) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
-    for deg in [30.0, 35.0, 40.0, 45.0, 50.0, 55.0, 60.0] {
-        let t = f64::to_radians(deg);
-        for mu in [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6] {
-            if t.sin() * t.cos() - mu * t.cos() * t.cos() <= 0.0 {
+    for deg in RANGE_ANGLES {
+        for mu in RANGE_FRICTIONS {
+            if sliding_drive(deg, mu) <= 0.0 {
                 continue;
             }
-            let c = (0.015 + 0.37 * h, 0.015 + 0.21 * h);
-            let (sim, wings) = grown_flaw(c, len, deg, mu);
+            let (sim, wings) = grown_flaw(RANGE_CENTRE, RANGE_FLAW, deg, mu);
             let converged = sim.history().iter().all(|st| st.converged);
             println!(
                 "{deg}°, μ {mu}: {:?} after {} steps, every step converged {converged}; \

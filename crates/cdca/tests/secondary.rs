@@ -251,19 +251,13 @@ fn a_scene_saved_after_a_secondary_crack_grows_the_same_next_steps() {
 #[test]
 #[ignore = "issue 34: 2 of the 48 flaws, next to the sliding threshold, start their first secondary crack at 0.947 of the first growth's load"]
 fn secondary_cracks_start_above_the_first_wings_load_over_the_flaw_range() {
-    let (len, h) = (0.0035, 0.0005);
     let mut failures = Vec::new();
-    for deg in [30.0f64, 35.0, 40.0, 45.0, 50.0, 55.0, 60.0] {
-        let t = deg.to_radians();
-        for mu in [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6] {
-            if t.sin() * t.cos() - mu * t.cos() * t.cos() <= 0.0 {
+    for deg in RANGE_ANGLES {
+        for mu in RANGE_FRICTIONS {
+            if sliding_drive(deg, mu) <= 0.0 {
                 continue;
             }
-            let mut s = bundled("specimen_single_flaw");
-            let mut crack = centre_crack(0.015 + 0.37 * h, 0.015 + 0.21 * h, 0.5 * len, deg);
-            crack.friction = mu;
-            s.cracks = vec![crack];
-            let (steps, _) = until_first_secondary(s, 30);
+            let (steps, _) = until_first_secondary(range_flaw_scene(deg, mu), 30);
             let (first, last) = (&steps[0], steps.last().expect("a step"));
             let ratio = last.load_factor / first.load_factor;
             println!(

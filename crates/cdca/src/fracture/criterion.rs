@@ -90,6 +90,21 @@ pub struct Faces {
     pub closed: bool,
 }
 
+impl Faces {
+    /// What a crack starting at a kink (a secondary-crack site) meets: it
+    /// is driven by the kinked crack's faces sliding (the branch applies
+    /// where they are `closed`), but it breaks intact rock, so the Faces
+    /// envelope's pressure term is the rock's `tan φ` (SPEC §8's own term)
+    /// and the faces' cohesion does not count: `σ_n tan φ + K_IIC/√(2π r0)`.
+    pub fn at_kink(params: &CriterionParams, closed: bool) -> Self {
+        Self {
+            friction: params.friction_angle.tan(),
+            cohesion: 0.0,
+            closed,
+        }
+    }
+}
+
 impl CriterionParams {
     /// The scene's settings, with the defaults resolved by
     /// [`radius_and_strength`].

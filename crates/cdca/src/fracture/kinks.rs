@@ -154,9 +154,7 @@ pub fn sample_kink(
 /// on the computed field ([`sample_kink`] at the scene's r0 with its σ_t,
 /// clear of the free tips' fields),
 /// with each kink's utilisation (≥ 1 exactly when a crack starts there).
-/// The shear branch is driven by the kinked crack's faces sliding and
-/// resisted by intact rock: its envelope is `σ_n tan φ + K_IIC/√(2π r0)`,
-/// with the rock's internal friction φ (SPEC §8's own term) where a K-tip
+/// The shear branch meets intact rock ([`Faces::at_kink`]), where a K-tip
 /// extending its faces has their μ and c_c. With the faces' μ (0–0.6 on
 /// the held-out flaws, against tan 49° = 1.15) secondary cracks started
 /// below the first wing's load on 14 of the 48 flaws of the range, and
@@ -186,12 +184,7 @@ pub fn evaluate_kinks(
         .flat_map(|c| c.free_tips().map(|k| c.tip_point(k)))
         .collect();
     for kink in sharp_kinks(&x.funcs.cracks, 1e-6 * h) {
-        // resisted by intact rock: the rock's friction, not the faces'
-        let faces = Faces {
-            friction: params.friction_angle.tan(),
-            cohesion: 0.0,
-            closed: closed_arm(x, states, &kink, params.r0),
-        };
+        let faces = Faces::at_kink(params, closed_arm(x, states, &kink, params.r0));
         let circle = sample_kink(&kink, params.r0, &tips, &|p| field.stress_averaged_at(p));
         let (criterion, u) = assess(params, &circle, &Sifs::default(), faces);
         let frame = kink.frame();

@@ -114,6 +114,36 @@ pub fn bundled(name: &str) -> SceneFile {
         .into_file()
 }
 
+/// Issue 17's flaw range: a 3.5 mm flaw at β = 30–60° (5° steps) with face
+/// friction μ = 0–0.6 (0.1 steps), drawn through the default specimen's
+/// centre, off the grid (60 × 60, h = 0.5 mm).
+pub const RANGE_ANGLES: [f64; 7] = [30.0, 35.0, 40.0, 45.0, 50.0, 55.0, 60.0];
+/// See [`RANGE_ANGLES`].
+pub const RANGE_FRICTIONS: [f64; 7] = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6];
+/// Length of the range's flaws, m.
+pub const RANGE_FLAW: f64 = 0.0035;
+/// Centre of the range's flaws, m.
+pub const RANGE_CENTRE: (f64, f64) = (0.015 + 0.37 * 0.0005, 0.015 + 0.21 * 0.0005);
+
+/// What drives a flaw at `deg` to the horizontal with face friction `mu`
+/// to slide under vertical compression, per unit load: `τ − μσ_n =
+/// sin β cos β − μ cos² β` (its faces slide where it is positive: 48 of
+/// the range's 49).
+pub fn sliding_drive(deg: f64, mu: f64) -> f64 {
+    let t = deg.to_radians();
+    t.sin() * t.cos() - mu * t.cos() * t.cos()
+}
+
+/// The default scene with the range's flaw at `deg` and face friction `mu`
+/// in place of its own.
+pub fn range_flaw_scene(deg: f64, mu: f64) -> SceneFile {
+    let mut s = bundled("specimen_single_flaw");
+    let mut crack = centre_crack(RANGE_CENTRE.0, RANGE_CENTRE.1, 0.5 * RANGE_FLAW, deg);
+    crack.friction = mu;
+    s.cracks = vec![crack];
+    s
+}
+
 /// Relative difference.
 pub fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs()

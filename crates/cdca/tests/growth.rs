@@ -495,12 +495,13 @@ fn stepped_flaws_coalesce() {
 /// steps, every one converged (the grow report's `coalescence`).
 ///
 /// Ignored (issue 34): the bundled pair does not link before it splits
-/// (58 steps, `through`). Its inner ends' wings grow away
-/// from the strip between the flaws (the upper flaw's up, the lower
-/// flaw's down). On 150² and 200² it links only in the step that splits
-/// the specimen, in different places (not mesh-converged). Held-out overlapping pairs of the same handedness grown
-/// to failure link 7 of 8 (1 of 8 when the kinks' envelope had the faces'
-/// μ; docs/fracture-model.md, *Secondary cracks*).
+/// (58 steps, `through`). Its inner ends' wings grow away from the strip
+/// between the flaws (the upper flaw's up, the lower flaw's down). On 150²
+/// and 200² it links only in the step that splits the specimen, in
+/// different places (not mesh-converged). Held-out overlapping pairs of
+/// the same handedness grown to failure link 7 of 8 (1 of 8 when the
+/// kinks' envelope had the faces' μ; docs/fracture-model.md, *Secondary
+/// cracks*).
 #[test]
 #[ignore = "issue 34: the bundled overlapping pair does not link before it splits (58 steps, grown to failure); 7 of 8 held-out overlapping pairs do (docs/fracture-model.md)"]
 fn overlapping_flaws_coalesce() {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Growth benchmark (issue 10): runs `cdca grow` on the bundled two-flaw
-# specimens (100 × 100, critical control, 40 steps) and prints a table of
+# specimens (100 × 100, critical control, grown to failure) and prints a table of
 # steps, tip extensions, junctions, shear extensions, the λ_cr range, wall
 # time and time per step; writes bench-out/growth.csv. A benchmark, not a
 # test: times depend on the machine and its load.

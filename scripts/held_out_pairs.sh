@@ -64,7 +64,7 @@ def grow(run):
     scene = json.loads(json.dumps(base))
     scene["name"] = f"held-out {layout} pair"
     scene["cracks"] = [{"points": p, "friction": mu} for p in pair(layout, length, deg, ratio * length)]
-    # to failure: the product's step cap (200), not the bundled scene's 40
+    # to failure: the product's step cap (200), whatever the base scene says
     del scene["growth"]["max_steps"]
     path = f"bench-out/pairs/{layout.replace(', ', '_')}_{length * 1e3:.2f}_{deg:.1f}_{mu}_{ratio:.2f}.json"
     json.dump(scene, open(path, "w"), indent=1)

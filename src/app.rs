@@ -32,11 +32,6 @@ use crate::view::{AppView, RunStatus, ViewState};
 /// Solver work per frame (the rest of a 60 Hz frame is left to drawing).
 pub const FRAME_BUDGET: Duration = Duration::from_millis(12);
 
-/// A drag that rests this long (the pointer held still, the button still
-/// down) has its scene solved, where a quick solve re-solves edits: the
-/// field shows the dragged crack before the release.
-pub const DRAG_REST: Duration = Duration::from_millis(150);
-
 /// How the app starts.
 #[derive(Clone, Debug)]
 pub struct Options {
@@ -91,7 +86,8 @@ pub struct TipCurve {
     pub curve: Option<CriterionCurve>,
 }
 
-/// The whole application.
+/// The whole application. (Independent flags, so bools.)
+#[allow(clippy::struct_excessive_bools)]
 pub struct WorkbenchApp {
     pub(crate) scene: SceneFile,
     pub(crate) scene_source: String,
@@ -127,9 +123,9 @@ pub struct WorkbenchApp {
     pub(crate) last_edited_crack: Option<usize>,
     /// A drag of the scene is under way (its edits are `ongoing`).
     pub(crate) dragging: bool,
-    /// When the drag's last edit was made, until its scene is solved (after
-    /// [`DRAG_REST`] of rest, or on release).
-    pub(crate) drag_edited_at: Option<Instant>,
+    /// The drag's edits were solved as it went
+    /// ([`Runner::follow_drag`](crate::runner::Runner::follow_drag)).
+    pub(crate) drag_followed: bool,
     /// A job the command line asked for, started once the first solve has
     /// freed the slot.
     pub(crate) queued: Option<Command>,
@@ -174,7 +170,7 @@ impl WorkbenchApp {
             opened_scene,
             last_edited_crack: None,
             dragging: false,
-            drag_edited_at: None,
+            drag_followed: false,
             queued: None,
             frame_stats: FrameStats::default(),
             frame_start: None,
@@ -452,7 +448,7 @@ impl WorkbenchApp {
                 _ => {}
             }
         }
-        self.solve_resting_drag(ctx);
+        self.follow_drag(ctx);
         self.finish_screenshot(ctx);
         self.run_tasks();
         // the job that waited (the banner said so), or the command line's
@@ -543,7 +539,8 @@ impl WorkbenchApp {
     /// the chosen resolution when it stops.
     fn field_key(&mut self) -> Option<FieldKey> {
         let version = self.runner.field_version();
-        let running = self.runner.is_running();
+        // coarse during a drag too: its solves follow the pointer
+        let running = self.runner.is_running() || self.dragging;
         let s = &self.settings;
         let wanted = s.field != FieldKind::None || s.deformed;
         let sim = self.runner.simulation()?;
@@ -568,6 +565,10 @@ impl WorkbenchApp {
     /// √(K_I⁺² + K_II²)) is inspected, so that the inspector shows its
     /// values and polar plot from the start.
     fn refresh_tip_curve(&mut self) {
+        if self.runner.is_previewing() {
+            // the simulation is a dragged scene's, not yet solved
+            return;
+        }
         let view = self.runner.view();
         if self.selected_tip.is_none() && !self.no_tip_wanted && view.solved {
             let load = |t: &cdca::report::TipReport| t.k1.max(0.0).hypot(t.k2);

@@ -2,9 +2,8 @@
 //! solver actions and exports.
 
 use cdca::scene::SceneFile;
-use web_time::Instant;
 
-use crate::app::{DRAG_REST, WorkbenchApp};
+use crate::app::WorkbenchApp;
 use crate::command::{Command, Export, PlotFormat};
 use crate::compare::Race;
 use crate::figure::Figure;
@@ -51,10 +50,12 @@ impl WorkbenchApp {
             Command::EndDrag => {
                 self.dragging = false;
                 self.undo.end_coalescing();
-                // a drag solved while it rested (or that edited nothing) is
-                // not solved again
+                let followed = std::mem::take(&mut self.drag_followed);
                 if self.runner.is_stale() {
                     self.scene_changed(false);
+                } else if followed {
+                    // its last position is solved as Solve would solve it
+                    self.runner.check_after_drag();
                 }
             }
             Command::OpenSceneText { source, text } => self.open_scene_text(source, &text),
@@ -298,30 +299,40 @@ impl WorkbenchApp {
         }
     }
 
-    /// A drag that has rested for [`DRAG_REST`] is solved as a release
-    /// would solve it (if the scene solves quickly); until then, a repaint
-    /// is asked for when the rest would be over.
-    pub(crate) fn solve_resting_drag(&mut self, ctx: &egui::Context) {
-        let Some(at) = self.drag_edited_at.filter(|_| self.dragging) else {
-            return;
-        };
-        if !(self.options.auto_solve && self.runner.solve_is_quick(&self.scene)) {
+    /// While a drag goes on, its scene is solved whenever the last solve
+    /// has ended and been shown (if the scene solves quickly): the field
+    /// follows the pointer, a solve or two behind it.
+    pub(crate) fn follow_drag(&mut self, ctx: &egui::Context) {
+        if !(self.dragging && self.follows_drag()) {
             return;
         }
-        if let Some(left) = DRAG_REST.checked_sub(at.elapsed()) {
-            ctx.request_repaint_after(left);
-        } else if self.runner.checked().is_ok() {
-            // (an invalid scene waits for the release, which says why)
-            self.drag_edited_at = None;
-            self.auto_solve();
+        match self.runner.follow_drag() {
+            Ok(true) => {
+                self.drag_followed = true;
+                ctx.request_repaint();
+            }
+            Ok(false) => {}
+            Err(e) => self.message = Some(Message::Error(e)),
         }
     }
 
-    /// The edited scene changed. While a drag goes on, the old solution is
-    /// hidden; when it ends, or rests for [`crate::app::DRAG_REST`], the
-    /// simulation is rebuilt and re-solved if that is quick.
+    /// Edits re-solve unasked, and so follow a drag.
+    fn follows_drag(&self) -> bool {
+        self.options.auto_solve && self.runner.solve_is_quick(&self.scene)
+    }
+
+    /// The edited scene changed. While a drag goes on, the last solution
+    /// stays until a solve of the dragged scene replaces it
+    /// ([`follow_drag`](Self::follow_drag)), where the scene solves quickly,
+    /// and is hidden otherwise; when the drag ends the simulation is
+    /// rebuilt and re-solved if that is quick.
     fn scene_changed(&mut self, ongoing: bool) {
         self.race = None;
+        if ongoing && self.follows_drag() && self.runner.can_follow_drag() {
+            // (an invalid scene waits for the release, which says why)
+            let _ = self.runner.edit_during_drag(&self.scene);
+            return;
+        }
         self.selected_tip = None;
         self.tip_curve = None;
         if self
@@ -332,7 +343,6 @@ impl WorkbenchApp {
             self.editor.selected_crack = None;
         }
         let valid = self.runner.invalidate(&self.scene);
-        self.drag_edited_at = ongoing.then(Instant::now);
         if !ongoing {
             let ok = valid.is_ok();
             self.show_validity(valid);

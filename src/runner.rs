@@ -96,6 +96,10 @@ pub struct Runner {
     /// (λ_cr, or the load increment's λ), shown before its tips are
     /// extended.
     show_now: bool,
+    /// The run under way solves a dragged scene
+    /// ([`follow_drag`](Self::follow_drag)): the view and the field keep
+    /// the last solved position until it ends.
+    previewing: bool,
 }
 
 impl Default for Runner {
@@ -121,6 +125,7 @@ impl Default for Runner {
             field_version: 0,
             field_moved_at: None,
             show_now: false,
+            previewing: false,
         }
     }
 }
@@ -258,6 +263,7 @@ impl Runner {
     /// work is asked for.
     pub fn invalidate(&mut self, scene: &SceneFile) -> Result<(), String> {
         self.drop_second_start();
+        self.previewing = false;
         if let Some(mut sim) = self.sim.take() {
             // kept for its discretisation only: its factor is freed now
             sim.release_solver();
@@ -276,6 +282,79 @@ impl Runner {
         self.checked = interactive_mesh(scene)
             .and_then(|()| Scene::try_from(scene.clone()).map_err(|e| e.to_string()));
         self.checked.as_ref().map(|_| ()).map_err(Clone::clone)
+    }
+
+    /// Whether an edit during a drag can leave the solution shown for
+    /// [`edit_during_drag`](Self::edit_during_drag): no run goes on but a
+    /// drag's solve or the check of the last Solve from bonded faces.
+    pub fn can_follow_drag(&self) -> bool {
+        self.run.is_none() || self.previewing || self.second_start.is_some()
+    }
+
+    /// An edit during a drag that the solves follow
+    /// ([`follow_drag`](Self::follow_drag); see
+    /// [`can_follow_drag`](Self::can_follow_drag)): the scene is only
+    /// checked; a solve of an earlier position goes on, and the view and
+    /// the field keep showing the last solved one.
+    pub fn edit_during_drag(&mut self, scene: &SceneFile) -> Result<(), String> {
+        if self.second_start.is_some() {
+            // the check of the solve before the drag no longer applies
+            self.drop_second_start();
+            self.run = None;
+        }
+        self.stale = true;
+        self.checked = interactive_mesh(scene)
+            .and_then(|()| Scene::try_from(scene.clone()).map_err(|e| e.to_string()));
+        self.checked.as_ref().map(|_| ()).map_err(Clone::clone)
+    }
+
+    /// Starts the solve of the dragged scene when the last one has ended
+    /// and its field is shown, if the scene changed since and is valid
+    /// (an invalid one waits for the release, which says why). The
+    /// simulation is built on the last one's discretisation
+    /// (`Simulation::with_scene`), solved as Solve solves it but for the
+    /// check from bonded faces, and replaces the view and the field when
+    /// it ends. Returns whether a solve started.
+    pub fn follow_drag(&mut self) -> Result<bool, String> {
+        if !self.stale || self.run.is_some() || self.field.progress().is_some() {
+            return Ok(false);
+        }
+        let Ok(scene) = self.checked.clone() else {
+            return Ok(false);
+        };
+        let old = match self.sim.take() {
+            Some(mut sim) => {
+                sim.release_solver();
+                Some(sim)
+            }
+            None => self.spare.take(),
+        };
+        self.build(old, scene)?;
+        self.stale = false;
+        self.relaxation_started = false;
+        self.pacer.restart();
+        self.start_relaxation();
+        self.direct_solve = (self.solver_kind() == SolverKind::Direct).then_some(0.0);
+        self.run = Some(Run::Relax);
+        self.previewing = true;
+        Ok(true)
+    }
+
+    /// The run under way solves a dragged scene (see
+    /// [`follow_drag`](Self::follow_drag)).
+    pub fn is_previewing(&self) -> bool {
+        self.previewing
+    }
+
+    /// After a drag whose last position is solved, or being solved
+    /// ([`follow_drag`](Self::follow_drag)): that solve stands as Solve's
+    /// (the same fresh start), and its check from bonded faces runs when
+    /// it has ended.
+    pub fn check_after_drag(&mut self) {
+        self.check_second_start = true;
+        if !self.previewing && self.start_second_start() {
+            self.run = Some(Run::Relax);
+        }
     }
 
     /// The edited scene as last checked by [`invalidate`](Self::invalidate),
@@ -377,6 +456,7 @@ impl Runner {
     pub fn step(&mut self) -> Result<(), String> {
         self.drop_second_start();
         self.run = None;
+        self.previewing = false;
         self.direct_solve = None;
         self.start_relaxation();
         let Some(sim) = self.sim.as_mut() else {
@@ -397,6 +477,7 @@ impl Runner {
     /// (one is started if none was).
     pub fn relax(&mut self) {
         self.start_relaxation();
+        self.previewing = false;
         if self.sim.is_some() {
             self.run = Some(Run::Relax);
         }
@@ -439,6 +520,7 @@ impl Runner {
         }
         self.growth_ready = true;
         self.direct_solve = None;
+        self.previewing = false;
         let steps = self.sim.as_ref().map_or(0, |s| s.history().len());
         self.run = Some(Run::grow(one.then_some(steps)));
         Ok(())
@@ -449,6 +531,7 @@ impl Runner {
     pub fn pause(&mut self) {
         self.drop_second_start();
         self.run = None;
+        self.previewing = false;
         self.direct_solve = None;
     }
 
@@ -502,7 +585,8 @@ impl Runner {
 
 /// The field task: samples the field `key` of the runner's current state.
 /// Finished when there is nothing (more) to sample; the job waits until
-/// then, so that what is shown is consistent.
+/// then, so that what is shown is consistent. While a dragged scene is
+/// being solved, the last solved position's field stays.
 pub struct FieldTask<'a> {
     runner: &'a mut Runner,
     key: Option<FieldKey>,
@@ -519,7 +603,10 @@ impl Task for FieldTask<'_> {
     fn advance(&mut self, deadline: Instant) -> Result<Progress, String> {
         let r = &mut *self.runner;
         Ok(match (&r.sim, self.key) {
-            (Some(sim), Some(key)) if r.view.has_field() => r.field.advance(sim, key, deadline),
+            // (a dragged scene's simulation is sampled once solved)
+            (Some(sim), Some(key)) if r.view.has_field() && !r.previewing => {
+                r.field.advance(sim, key, deadline)
+            }
             _ => Progress::Finished,
         })
     }
@@ -618,8 +705,12 @@ impl Task for Runner {
         let solved = sim.is_solved();
         match result {
             Ok(slice) => {
-                self.refresh(solved, slice.status);
+                // a drag's solve is shown when it ends
+                if !self.previewing || slice.progress == Progress::Finished {
+                    self.refresh(solved, slice.status);
+                }
                 if slice.progress == Progress::Finished {
+                    self.previewing = false;
                     if let Some(t) = self.direct_solve.take() {
                         self.last_solve_seconds = Some(t);
                         self.last_solve_elements = elements;
@@ -639,12 +730,14 @@ impl Task for Runner {
                 self.view.mark_split();
                 self.view.free_piece = piece;
                 self.run = None;
+                self.previewing = false;
                 self.direct_solve = None;
                 Ok(Progress::Finished)
             }
             Err(e) => {
                 self.refresh(solved, None);
                 self.run = None;
+                self.previewing = false;
                 self.direct_solve = None;
                 Err(e.to_string())
             }

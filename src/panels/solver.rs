@@ -348,7 +348,7 @@ fn race_progress_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
 fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
     let view = &v.solution;
     if v.run.dragging && v.run.solves_on_release {
-        ui.label("Dragging — the scene re-solves when the pointer rests, and on release.");
+        ui.label("Dragging — the field follows the pointer.");
     } else if v.run.dragging {
         ui.label("Dragging — press Solve after release.");
     } else if v.run.stale && !view.solved {

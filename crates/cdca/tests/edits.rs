@@ -1,8 +1,11 @@
 //! An edited scene solves exactly as a new simulation of it would
 //! (`Simulation::with_scene`): an edit of the load, the faces' contact law
-//! or the solver settings keeps the integrated discretisation, any edit the discretisation
-//! depends on builds it anew, and so does a simulation that has grown.
-//! Reference: `Simulation::new` of the edited scene, bit for bit.
+//! or the solver settings keeps the integrated discretisation; an edit of
+//! the cracks keeps the elements no edited crack enriches, and the
+//! stiffness pattern where the DOFs are coupled as before; any other edit
+//! the discretisation depends on builds it anew, and so does a simulation
+//! that has grown. Reference: `Simulation::new` of the edited scene, bit
+//! for bit.
 
 mod common;
 
@@ -139,4 +142,75 @@ fn a_simulation_that_has_grown_builds_its_scene_anew() {
     assert!(rebuilt.history().is_empty());
     let fresh = Simulation::new(scene).expect("builds");
     assert!(solved(rebuilt) == solved(fresh));
+}
+
+/// The stepped pair on a 40 × 40 mesh, solved.
+fn pair() -> (SceneFile, Simulation) {
+    let mut file = bundled("specimen_two_flaws_stepped");
+    file.mesh.nx = 40;
+    file.mesh.ny = 40;
+    let mut sim = Simulation::new(valid(file.clone())).expect("builds");
+    sim.solve().expect("solve");
+    (file, sim)
+}
+
+/// Moves the end point `k` of crack `c` by `(dx, dy)`, m.
+fn move_point(s: &mut SceneFile, c: usize, k: usize, dx: f64, dy: f64) {
+    if let Some(p) = s.cracks[c].points.as_mut() {
+        p[k][0] += dx;
+        p[k][1] += dy;
+    }
+}
+
+#[test]
+fn an_edit_of_the_cracks_keeps_what_it_does_not_touch() {
+    // one flaw dragged: the other flaw's elements keep their stiffness
+    let (file, sim) = pair();
+    let scene = edited(&file, |s| move_point(s, 1, 1, 0.37e-3, -0.21e-3));
+    let kept = sim.with_scene(scene.clone()).expect("builds");
+    let fresh = Simulation::new(scene).expect("builds");
+    let (left, all) = (
+        kept.xfem().points_to_integrate(),
+        fresh.xfem().points_to_integrate(),
+    );
+    assert!(
+        left > 0 && 3 * left < 2 * all,
+        "the unmoved flaw's elements are kept: {left} of {all} points to integrate"
+    );
+    assert!(solved(kept) == solved(fresh), "one flaw dragged");
+
+    // a tip moved within the elements it cuts and enriches: the same
+    // stiffness pattern, and symbolic factorisation, is kept
+    let (file, sim) = base();
+    // (held, so that a new pattern cannot take the old one's address)
+    let before = std::sync::Arc::clone(sim.xfem().pattern().expect("pattern").ordered());
+    let scene = edited(&file, |s| move_point(s, 0, 1, 2e-6, 1e-6));
+    let kept = sim.with_scene(scene.clone()).expect("builds");
+    let after = kept.xfem().pattern().expect("pattern").ordered();
+    assert!(
+        std::sync::Arc::ptr_eq(&before, after),
+        "the pattern is kept"
+    );
+    let fresh = Simulation::new(scene).expect("builds");
+    assert!(solved(kept) == solved(fresh), "a tip moved a little");
+
+    // a crack added, and one removed (the other renumbered)
+    let edits: [Edit; 2] = [
+        (
+            "a crack added",
+            Box::new(|s| {
+                let mut c = s.cracks[0].clone();
+                c.points = Some(vec![[0.006, 0.022], [0.009, 0.024]]);
+                s.cracks.push(c);
+            }),
+        ),
+        ("a crack removed", Box::new(|s| drop(s.cracks.remove(0)))),
+    ];
+    for (what, change) in edits {
+        let (file, sim) = pair();
+        let scene = edited(&file, change);
+        let kept = sim.with_scene(scene.clone()).expect("builds");
+        let fresh = Simulation::new(scene).expect("builds");
+        assert!(solved(kept) == solved(fresh), "{what}");
+    }
 }

@@ -48,6 +48,10 @@ pub struct Ordered {
 #[derive(Clone, Debug)]
 pub struct Pattern {
     ordered: Arc<Ordered>,
+    /// The element DOF lists it was built from (`dofs`, `starts` of
+    /// [`new`](Self::new)), for [`fits`](Self::fits).
+    dofs: Vec<u32>,
+    dof_starts: Vec<usize>,
     /// Start of each element's map in `map`, and the end of the last.
     starts: Vec<usize>,
     /// Per element, column-major like its matrix: the position in
@@ -138,9 +142,19 @@ impl Pattern {
                 lower,
                 symbolic,
             }),
+            dofs: dofs.to_vec(),
+            dof_starts: starts.to_vec(),
             starts: map_starts,
             map,
         })
+    }
+
+    /// Whether this is the pattern [`new`](Self::new) would make of the
+    /// same arguments: another discretisation whose elements couple the
+    /// same DOFs in the same order (a crack moved within the elements it
+    /// cuts and enriches) shares it.
+    pub fn fits(&self, dofs: &[u32], starts: &[usize], perm: &[usize]) -> bool {
+        self.dofs == dofs && self.dof_starts == starts && self.ordered.perm == perm
     }
 
     /// Ordering, reordered lower triangle and symbolic factorisation,

@@ -423,6 +423,7 @@ impl Simulation {
         let reuse = Reuse {
             previous: &self.scratch.xfem,
             moved,
+            redrawn: Vec::new(),
         };
         let new = self
             .model

@@ -10,7 +10,7 @@ use crate::contact::in_sweep::InSweepParams;
 use crate::contact::law::{ContactState, FaceState};
 use crate::contact::status::{ContactInfo, ContactParams};
 use crate::discretisation::model::Model;
-use crate::discretisation::xfem::Xfem;
+use crate::discretisation::xfem::{Reuse, Xfem};
 use crate::error::{SceneError, SolveError};
 use crate::fracture::criterion::{Circle, CriterionParams, Faces};
 use crate::fracture::tips::TipDomains;
@@ -97,21 +97,28 @@ pub(super) struct Scratch {
 /// solve time; the solver is made anew), name and description, and
 /// neither resumes a growth run.
 fn same_discretisation(a: &SceneFile, b: &SceneFile) -> bool {
-    if a.growth.resume.is_some() || b.growth.resume.is_some() || a.cracks.len() != b.cracks.len() {
+    a.cracks.len() == b.cracks.len()
+        && a.cracks
+            .iter()
+            .zip(&b.cracks)
+            .all(|(ca, cb)| ca.points == cb.points && ca.arc == cb.arc)
+        && same_plate(a, b)
+}
+
+/// Whether `b` has the mesh, material and supports of `a`: the same but
+/// for the cracks and what [`same_discretisation`] leaves out, and
+/// neither resumes a growth run.
+fn same_plate(a: &SceneFile, b: &SceneFile) -> bool {
+    if a.growth.resume.is_some() || b.growth.resume.is_some() {
         return false;
     }
     let mut b = b.clone();
+    b.cracks.clone_from(&a.cracks);
     b.name.clone_from(&a.name);
     b.description.clone_from(&a.description);
     b.criterion = a.criterion.clone();
     b.growth = a.growth.clone();
     b.solver = a.solver.clone();
-    for (ca, cb) in a.cracks.iter().zip(&mut b.cracks) {
-        cb.friction = ca.friction;
-        cb.cohesion = ca.cohesion;
-        cb.normal_stiffness = ca.normal_stiffness;
-        cb.shear_stiffness = ca.shear_stiffness;
-    }
     for (sa, sb) in [
         (&a.boundary.bottom, &mut b.boundary.bottom),
         (&a.boundary.left, &mut b.boundary.left),
@@ -268,11 +275,20 @@ impl Simulation {
     /// `scene` would; otherwise it is one. An edit of the load or the
     /// friction in the workbench then re-solves without integrating or
     /// ordering anything.
+    ///
+    /// Where only the cracks differ (a crack dragged, drawn or removed),
+    /// the elements no edited crack enriches keep their stiffness, and the
+    /// stiffness pattern is kept when the elements couple the same DOFs (a
+    /// crack moved within the elements it cuts and enriches); the result
+    /// is the same, to the last bit, as a new simulation's.
     pub fn with_scene(self, scene: Scene) -> Result<Self, SolveError> {
-        if !self.state.history.is_empty() || !same_discretisation(&self.model.scene, &scene) {
+        if !self.state.history.is_empty() || !same_plate(&self.model.scene, &scene) {
             // freed first: a large factor need not live beside the new build
             drop(self);
             return Self::new(scene);
+        }
+        if !same_discretisation(&self.model.scene, &scene) {
+            return self.with_cracks(scene);
         }
         // the rest (solver and factor, state) is freed at the block's end
         let (mut xfem, rebuild_points) = {
@@ -288,6 +304,35 @@ impl Simulation {
             kept.kt = new.kt;
         }
         debug_assert!(xfem.funcs.cracks == cracks, "the same crack geometry");
+        Self::from_parts(model, cracks, xfem, rebuild_points)
+    }
+
+    /// [`with_scene`](Self::with_scene) for a scene whose cracks differ
+    /// from this one's (and nothing else it is built from).
+    fn with_cracks(self, scene: Scene) -> Result<Self, SolveError> {
+        let model = Model::new(scene);
+        let cracks = model.initial_cracks();
+        sound(&model.scene, &cracks)?;
+        // the rest (solver and factor, state) is freed at the block's end
+        let mut previous = {
+            let old = self;
+            old.scratch.xfem
+        };
+        let old = &previous.funcs.cracks;
+        let redrawn = cracks
+            .iter()
+            .enumerate()
+            .map(|(i, c)| old.get(i).is_none_or(|o| o.points != c.points))
+            .collect();
+        let reuse = Reuse {
+            previous: &previous,
+            moved: Vec::new(),
+            redrawn,
+        };
+        let mut xfem = model.rediscretise(cracks.clone(), Some(&reuse));
+        xfem.offer_pattern(previous.take_pattern());
+        drop(previous);
+        let rebuild_points = xfem.points_to_integrate();
         Self::from_parts(model, cracks, xfem, rebuild_points)
     }
 

@@ -12,7 +12,7 @@ pub mod classify;
 pub mod element;
 pub mod faces;
 
-use std::cell::OnceCell;
+use std::cell::{OnceCell, RefCell};
 
 use nalgebra::{DMatrix, SMatrix};
 
@@ -39,11 +39,15 @@ pub use faces::{FACE_ORDER, FacePoint, MIN_TIP_PIECE};
 pub const NOT_INTEGRATED: &str = "element stiffness not yet integrated (Xfem::integrate)";
 
 /// What may be reused from the previous discretisation after a crack
-/// change: element data far enough from every point that moved.
+/// change: element data far enough from every point that moved, of
+/// elements no redrawn crack enriches.
 pub struct Reuse<'a> {
     pub previous: &'a Xfem,
     /// Old and new positions of the tips that changed.
     pub moved: Vec<P2>,
+    /// Per crack (new numbering): its polyline was edited (not grown), so
+    /// its enrichment changed everywhere; none of its elements is reused.
+    pub redrawn: Vec<bool>,
 }
 
 /// The discretisation.
@@ -64,6 +68,9 @@ pub struct Xfem {
     /// Sparsity pattern and symbolic Cholesky of the stiffness, computed on
     /// first use and shared by every factorisation on this discretisation.
     pattern: OnceCell<Pattern>,
+    /// The previous discretisation's pattern, taken by
+    /// [`pattern`](Self::pattern) where it [fits](Pattern::fits).
+    offered: RefCell<Option<Pattern>>,
     /// Slots of enriched elements whose stiffness is still to be integrated
     /// (see [`build`](Self::build)); empty once usable.
     unintegrated: Vec<u32>,
@@ -104,6 +111,7 @@ impl Xfem {
             enriched: Vec::new(),
             faces: Vec::new(),
             pattern: OnceCell::new(),
+            offered: RefCell::new(None),
             unintegrated: Vec::new(),
             integrated_points: 0,
         };
@@ -118,7 +126,11 @@ impl Xfem {
                 + 2.0 * x.mesh.h()
         });
         let changed = reuse.map_or_else(Vec::new, |r| {
-            changed_functions(&r.previous.funcs.cracks, &x.funcs.cracks)
+            let mut changed = changed_functions(&r.previous.funcs.cracks, &x.funcs.cracks);
+            for (c, &redrawn) in changed.iter_mut().zip(&r.redrawn) {
+                *c |= redrawn;
+            }
+            changed
         });
         let previous = reuse.map(|r| Previous {
             slot: &r.previous.slot,
@@ -139,7 +151,9 @@ impl Xfem {
     /// over about `max_points` quadrature points (whole batches of
     /// `add_stiffness`, at least one: an element may take several calls,
     /// near a tip one can have 20 000 points); returns whether all have
-    /// their stiffness now. The result does not depend on `max_points`.
+    /// their stiffness now. Whole elements are integrated on the machine's
+    /// threads (natively; a browser has one). The result depends neither on
+    /// `max_points` nor on the threads.
     pub fn integrate(&mut self, max_points: usize) -> bool {
         let mut left = max_points;
         while left > 0
@@ -147,6 +161,12 @@ impl Xfem {
         {
             let slot = slot as usize;
             let (from, n) = (self.integrated_points, self.enriched[slot].qps.len());
+            if from == 0 && n <= left {
+                // whole elements on the threads; an element that does not
+                // fit waits for the next call
+                self.integrate_whole(left);
+                break;
+            }
             // slices end on a batch of `add_stiffness` (the stiffness does
             // not depend on the slicing), at least one batch a call
             let to = n.min(
@@ -177,6 +197,72 @@ impl Xfem {
             }
         }
         self.unintegrated.is_empty()
+    }
+
+    /// Integrates the stiffness of the last elements of `unintegrated`
+    /// whose points add up to at most `max_points` (at least one), whole,
+    /// spread over the [`worker_threads`]. Each element is summed by one
+    /// thread in the order one thread would sum it, so the stiffness does
+    /// not depend on the number of threads.
+    fn integrate_whole(&mut self, max_points: usize) {
+        let mut points = 0;
+        let mut count = 0;
+        for &s in self.unintegrated.iter().rev() {
+            let n = self.enriched[s as usize].qps.len();
+            if count > 0 && points + n > max_points {
+                break;
+            }
+            points += n;
+            count += 1;
+        }
+        let mut slots = self.unintegrated.split_off(self.unintegrated.len() - count);
+        let threads = if points >= MIN_POINTS_PER_THREAD {
+            worker_threads().min(points / MIN_POINTS_PER_THREAD)
+        } else {
+            1
+        };
+        // the largest first, each to the thread with the fewest points
+        slots.sort_by_key(|&s| std::cmp::Reverse(self.enriched[s as usize].qps.len()));
+        let mut groups = vec![(0, Vec::new()); threads.max(1)];
+        for s in slots {
+            let g = groups
+                .iter_mut()
+                .min_by_key(|g| g.0)
+                .expect("at least one group");
+            g.0 += self.enriched[s as usize].qps.len();
+            g.1.push(s);
+        }
+        let (mesh, funcs, elastic, enriched) =
+            (&self.mesh, &self.funcs, &self.elastic, &self.enriched);
+        let thickness = self.thickness;
+        let integrate = |group: &[u32]| -> Vec<(u32, DMatrix<f64>)> {
+            group
+                .iter()
+                .map(|&s| {
+                    let el = &enriched[s as usize];
+                    let nd = 2 * el.scalars.len();
+                    let mut k = DMatrix::zeros(nd, nd);
+                    let all = 0..el.qps.len();
+                    add_stiffness(mesh, funcs, elastic, thickness, el, all, &mut k);
+                    (s, k)
+                })
+                .collect()
+        };
+        let done: Vec<(u32, DMatrix<f64>)> = std::thread::scope(|scope| {
+            let (first, rest) = groups.split_first().expect("at least one group");
+            let handles: Vec<_> = rest
+                .iter()
+                .map(|g| scope.spawn(|| integrate(&g.1)))
+                .collect();
+            let mut done = integrate(&first.1);
+            for h in handles {
+                done.extend(h.join().expect("an integration thread panicked"));
+            }
+            done
+        });
+        for (s, k) in done {
+            self.enriched[s as usize].k = k;
+        }
     }
 
     /// Whether every element's stiffness is integrated (needed by every
@@ -280,20 +366,48 @@ impl Xfem {
             dofs.extend_from_slice(&el.dofs);
             starts.push(dofs.len());
         }
-        let perm = self
+        let perm: Vec<usize> = self
             .mesh
             .nested_dissection()
             .into_iter()
             .flat_map(|node| self.dofs.node_free(node).map(|d| d as usize))
             .collect();
-        let p = Pattern::new(self.n_free(), &dofs, &starts, perm)?;
+        let offered = self.offered.borrow_mut().take();
+        let p = match offered {
+            Some(p) if p.fits(&dofs, &starts, &perm) => p,
+            _ => Pattern::new(self.n_free(), &dofs, &starts, perm)?,
+        };
         Ok(self.pattern.get_or_init(|| p))
+    }
+
+    /// The pattern, if computed, taken out (to be
+    /// [offered](Self::offer_pattern) to the next discretisation).
+    pub fn take_pattern(&mut self) -> Option<Pattern> {
+        self.pattern.take()
+    }
+
+    /// Offers `pattern` (the previous discretisation's) to
+    /// [`pattern`](Self::pattern), which takes it instead of computing its
+    /// own where its elements couple the same DOFs in the same order.
+    pub fn offer_pattern(&mut self, pattern: Option<Pattern>) {
+        *self.offered.get_mut() = pattern;
     }
 
     /// Number of free DOFs.
     pub fn n_free(&self) -> usize {
         self.dofs.n_free
     }
+}
+
+/// Quadrature points below which one more thread does not pay for its
+/// start (about 0.2 ms of element integration).
+const MIN_POINTS_PER_THREAD: usize = 500;
+
+/// Threads the element integration uses: the machine's, at most four
+/// (one where threads are not available, as in a browser).
+fn worker_threads() -> usize {
+    static THREADS: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
+    *THREADS.get_or_init(|| std::thread::available_parallelism().map_or(1, |n| n.get().min(4)))
 }
 
 /// Per crack of `new`: whether its enrichment functions may differ from

@@ -36,15 +36,20 @@ fn solved(mut sim: Simulation) -> (Vec<f64>, String, String, usize, usize) {
     )
 }
 
-/// The default scene on a 30 × 30 mesh, solved (so its elements are
-/// integrated and its matrix ordered and factorised).
-fn base() -> (SceneFile, Simulation) {
-    let mut file = bundled("specimen_single_flaw");
-    file.mesh.nx = 30;
-    file.mesh.ny = 30;
+/// The bundled scene `name` on an `n × n` mesh, solved (so its elements
+/// are integrated and its matrix ordered and factorised).
+fn solved_scene(name: &str, n: usize) -> (SceneFile, Simulation) {
+    let mut file = bundled(name);
+    file.mesh.nx = n;
+    file.mesh.ny = n;
     let mut sim = Simulation::new(valid(file.clone())).expect("builds");
     sim.solve().expect("solve");
     (file, sim)
+}
+
+/// The default scene on a 30 × 30 mesh, solved.
+fn base() -> (SceneFile, Simulation) {
+    solved_scene("specimen_single_flaw", 30)
 }
 
 /// A named edit of a scene file.
@@ -146,12 +151,7 @@ fn a_simulation_that_has_grown_builds_its_scene_anew() {
 
 /// The stepped pair on a 40 × 40 mesh, solved.
 fn pair() -> (SceneFile, Simulation) {
-    let mut file = bundled("specimen_two_flaws_stepped");
-    file.mesh.nx = 40;
-    file.mesh.ny = 40;
-    let mut sim = Simulation::new(valid(file.clone())).expect("builds");
-    sim.solve().expect("solve");
-    (file, sim)
+    solved_scene("specimen_two_flaws_stepped", 40)
 }
 
 /// Moves the end point `k` of crack `c` by `(dx, dy)`, m.

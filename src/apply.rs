@@ -329,8 +329,7 @@ impl WorkbenchApp {
     fn scene_changed(&mut self, ongoing: bool) {
         self.race = None;
         if ongoing && self.follows_drag() && self.runner.can_follow_drag() {
-            // (an invalid scene waits for the release, which says why)
-            let _ = self.runner.edit_during_drag(&self.scene);
+            self.runner.edit_during_drag(&self.scene);
             return;
         }
         self.selected_tip = None;

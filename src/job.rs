@@ -25,7 +25,7 @@ impl Job {
     pub fn of_run(mode: RunMode) -> Option<Self> {
         match mode {
             RunMode::Paused => None,
-            RunMode::Relaxing => Some(Self::Solve),
+            RunMode::Relaxing | RunMode::SolvingDrag => Some(Self::Solve),
             RunMode::Growing | RunMode::GrowingOne => Some(Self::Growth),
         }
     }

@@ -17,6 +17,9 @@ pub enum RunMode {
     Paused,
     /// Relaxation sweeps each frame until converged.
     Relaxing,
+    /// A dragged scene is solved (its solution shows when it ends; the
+    /// panels stay as they are, as paused).
+    SolvingDrag,
     /// Growth steps each frame until the run ends.
     Growing,
     /// One growth step, then the solve of the grown cracks, then pause.
@@ -28,6 +31,10 @@ pub enum RunMode {
 pub enum Run {
     /// The relaxation started on the simulation, until it finishes.
     Relax,
+    /// The solve of a dragged scene
+    /// ([`Runner::follow_drag`](crate::runner::Runner::follow_drag)),
+    /// shown when it ends.
+    DragSolve,
     Grow(Growth),
 }
 
@@ -64,6 +71,7 @@ impl Run {
     pub fn mode(&self) -> RunMode {
         match self {
             Self::Relax => RunMode::Relaxing,
+            Self::DragSolve => RunMode::SolvingDrag,
             Self::Grow(g) if g.one_step_after.is_some() => RunMode::GrowingOne,
             Self::Grow(_) => RunMode::Growing,
         }
@@ -83,7 +91,7 @@ impl Run {
         deadline: Instant,
     ) -> Result<Slice, SolveError> {
         match self {
-            Self::Relax => relax(sim, pacer, deadline),
+            Self::Relax | Self::DragSolve => relax(sim, pacer, deadline),
             Self::Grow(g) => g.advance(sim, pacer, deadline),
         }
     }

@@ -96,10 +96,6 @@ pub struct Runner {
     /// (λ_cr, or the load increment's λ), shown before its tips are
     /// extended.
     show_now: bool,
-    /// The run under way solves a dragged scene
-    /// ([`follow_drag`](Self::follow_drag)): the view and the field keep
-    /// the last solved position until it ends.
-    previewing: bool,
 }
 
 impl Default for Runner {
@@ -125,7 +121,6 @@ impl Default for Runner {
             field_version: 0,
             field_moved_at: None,
             show_now: false,
-            previewing: false,
         }
     }
 }
@@ -263,7 +258,6 @@ impl Runner {
     /// work is asked for.
     pub fn invalidate(&mut self, scene: &SceneFile) -> Result<(), String> {
         self.drop_second_start();
-        self.previewing = false;
         if let Some(mut sim) = self.sim.take() {
             // kept for its discretisation only: its factor is freed now
             sim.release_solver();
@@ -278,6 +272,12 @@ impl Runner {
         // `Simulation::steps_done` counts them once it is built
         self.view.steps_done = scene.growth.resume.as_ref().map_or(0, |r| r.steps);
         self.field.clear();
+        self.check(scene)
+    }
+
+    /// Marks the simulation stale for the edited `scene` and checks it
+    /// (cheap; `Scene::try_from`).
+    fn check(&mut self, scene: &SceneFile) -> Result<(), String> {
         self.stale = true;
         self.checked = interactive_mesh(scene)
             .and_then(|()| Scene::try_from(scene.clone()).map_err(|e| e.to_string()));
@@ -288,24 +288,22 @@ impl Runner {
     /// [`edit_during_drag`](Self::edit_during_drag): no run goes on but a
     /// drag's solve or the check of the last Solve from bonded faces.
     pub fn can_follow_drag(&self) -> bool {
-        self.run.is_none() || self.previewing || self.second_start.is_some()
+        self.run.is_none() || self.is_previewing() || self.second_start.is_some()
     }
 
     /// An edit during a drag that the solves follow
     /// ([`follow_drag`](Self::follow_drag); see
     /// [`can_follow_drag`](Self::can_follow_drag)): the scene is only
     /// checked; a solve of an earlier position goes on, and the view and
-    /// the field keep showing the last solved one.
-    pub fn edit_during_drag(&mut self, scene: &SceneFile) -> Result<(), String> {
+    /// the field keep showing the last solved one. An invalid scene waits
+    /// for the release, which says why.
+    pub fn edit_during_drag(&mut self, scene: &SceneFile) {
         if self.second_start.is_some() {
             // the check of the solve before the drag no longer applies
             self.drop_second_start();
             self.run = None;
         }
-        self.stale = true;
-        self.checked = interactive_mesh(scene)
-            .and_then(|()| Scene::try_from(scene.clone()).map_err(|e| e.to_string()));
-        self.checked.as_ref().map(|_| ()).map_err(Clone::clone)
+        let _ = self.check(scene);
     }
 
     /// Starts the solve of the dragged scene when the last one has ended
@@ -335,15 +333,14 @@ impl Runner {
         self.pacer.restart();
         self.start_relaxation();
         self.direct_solve = (self.solver_kind() == SolverKind::Direct).then_some(0.0);
-        self.run = Some(Run::Relax);
-        self.previewing = true;
+        self.run = Some(Run::DragSolve);
         Ok(true)
     }
 
     /// The run under way solves a dragged scene (see
     /// [`follow_drag`](Self::follow_drag)).
     pub fn is_previewing(&self) -> bool {
-        self.previewing
+        self.run == Some(Run::DragSolve)
     }
 
     /// After a drag whose last position is solved, or being solved
@@ -352,7 +349,8 @@ impl Runner {
     /// it has ended.
     pub fn check_after_drag(&mut self) {
         self.check_second_start = true;
-        if !self.previewing && self.start_second_start() {
+        if !self.is_previewing() && self.start_second_start() {
+            // the run goes on for the check alone
             self.run = Some(Run::Relax);
         }
     }
@@ -456,7 +454,6 @@ impl Runner {
     pub fn step(&mut self) -> Result<(), String> {
         self.drop_second_start();
         self.run = None;
-        self.previewing = false;
         self.direct_solve = None;
         self.start_relaxation();
         let Some(sim) = self.sim.as_mut() else {
@@ -477,7 +474,6 @@ impl Runner {
     /// (one is started if none was).
     pub fn relax(&mut self) {
         self.start_relaxation();
-        self.previewing = false;
         if self.sim.is_some() {
             self.run = Some(Run::Relax);
         }
@@ -520,7 +516,6 @@ impl Runner {
         }
         self.growth_ready = true;
         self.direct_solve = None;
-        self.previewing = false;
         let steps = self.sim.as_ref().map_or(0, |s| s.history().len());
         self.run = Some(Run::grow(one.then_some(steps)));
         Ok(())
@@ -531,7 +526,6 @@ impl Runner {
     pub fn pause(&mut self) {
         self.drop_second_start();
         self.run = None;
-        self.previewing = false;
         self.direct_solve = None;
     }
 
@@ -604,7 +598,7 @@ impl Task for FieldTask<'_> {
         let r = &mut *self.runner;
         Ok(match (&r.sim, self.key) {
             // (a dragged scene's simulation is sampled once solved)
-            (Some(sim), Some(key)) if r.view.has_field() && !r.previewing => {
+            (Some(sim), Some(key)) if r.view.has_field() && !r.is_previewing() => {
                 r.field.advance(sim, key, deadline)
             }
             _ => Progress::Finished,
@@ -693,6 +687,7 @@ impl Task for Runner {
             *t += start.elapsed().as_secs_f64();
         }
         let final_solve = run.in_final_solve();
+        let drag_solve = *run == Run::DragSolve;
         let elements = sim.scene().mesh.nx * sim.scene().mesh.ny;
         if matches!(run, Run::Grow(_)) {
             // a later Relax starts its own relaxation
@@ -706,16 +701,17 @@ impl Task for Runner {
         match result {
             Ok(slice) => {
                 // a drag's solve is shown when it ends
-                if !self.previewing || slice.progress == Progress::Finished {
+                if !drag_solve || slice.progress == Progress::Finished {
                     self.refresh(solved, slice.status);
                 }
                 if slice.progress == Progress::Finished {
-                    self.previewing = false;
                     if let Some(t) = self.direct_solve.take() {
                         self.last_solve_seconds = Some(t);
                         self.last_solve_elements = elements;
                     }
                     if self.start_second_start() {
+                        // the run goes on for the check alone
+                        self.run = Some(Run::Relax);
                         return Ok(Progress::Working);
                     }
                     self.run = None;
@@ -730,14 +726,12 @@ impl Task for Runner {
                 self.view.mark_split();
                 self.view.free_piece = piece;
                 self.run = None;
-                self.previewing = false;
                 self.direct_solve = None;
                 Ok(Progress::Finished)
             }
             Err(e) => {
                 self.refresh(solved, None);
                 self.run = None;
-                self.previewing = false;
                 self.direct_solve = None;
                 Err(e.to_string())
             }

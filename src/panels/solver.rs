@@ -188,7 +188,8 @@ fn job_button(
 
 fn controls_ui(ui: &mut Ui, v: &AppView, race_time_cap: &mut f64, cmds: &mut Vec<Command>) {
     let mode = v.run.mode;
-    let paused = mode == RunMode::Paused;
+    // (a drag's solves come and go every few frames: the buttons stay)
+    let paused = matches!(mode, RunMode::Paused | RunMode::SolvingDrag);
     let iterative = v.scene.solver.kind != SolverKind::Direct;
     let finished = v.solution.outcome.is_some();
     let ended = "Growth has ended (see Outcome); Reset goes back to the scene's cracks.";
@@ -355,7 +356,7 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         ui.colored_label(ui.visuals().warn_fg_color, "Scene changed — press Solve.");
     }
     match v.run.mode {
-        RunMode::Paused => {}
+        RunMode::Paused | RunMode::SolvingDrag => {}
         RunMode::Relaxing => {
             ui.horizontal(|ui| {
                 ui.spinner();

@@ -223,7 +223,7 @@ impl Xfem {
         };
         // the largest first, each to the thread with the fewest points
         slots.sort_by_key(|&s| std::cmp::Reverse(self.enriched[s as usize].qps.len()));
-        let mut groups = vec![(0, Vec::new()); threads.max(1)];
+        let mut groups = vec![(0, Vec::new()); threads];
         for s in slots {
             let g = groups
                 .iter_mut()

@@ -720,3 +720,150 @@ fn a_few_changed_contact_states_solve_as_the_factorised_matrix() {
         .expect("factorised");
     assert_eq!(solver.correction_rank(), None, "{closed} points opened");
 }
+
+/// Reference: whole solves. The coupling `aᵀ K⁻¹ b` between face vectors
+/// (each face point's normal jump against each one's tangential jump) that
+/// the friction limits' Newton step reads comes from forward solves of the
+/// vectors alone on the part of the factor they reach; through a low-rank
+/// correction (three points turned from stick to slip or back) it takes
+/// the correction's term off. Both agree with `aᵀ` times the direct
+/// solution for `b` to 1e-10 of the largest entry.
+#[test]
+fn couplings_between_face_vectors_are_those_of_whole_solves() {
+    use cdca::contact::law::{ContactState, FaceState, contact_system, jump_operators};
+    use cdca::contact::limit_newton::by_dof;
+    use cdca::solvers::linear::{DirectSolver, LinearSolver};
+
+    let (x, load, committed, mut u, states, info) = solved_kinked_flaw();
+    assert!(info.converged, "{info:?}");
+    let leading: Vec<usize> = (0..states.len())
+        .filter(|&i| states[i].state != ContactState::Open && x.faces[i].follows.is_none())
+        .collect();
+    let rows: Vec<_> = leading
+        .iter()
+        .map(|&i| by_dof(&x, &x.faces[i], &jump_operators(&x.faces[i]).0, 1.0))
+        .collect();
+    let cols: Vec<_> = leading
+        .iter()
+        .map(|&i| by_dof(&x, &x.faces[i], &jump_operators(&x.faces[i]).1, 1.0))
+        .collect();
+    let mut flipped = states.clone();
+    for &i in &leading[..3] {
+        flipped[i].state = match flipped[i].state {
+            ContactState::Stick => ContactState::Slip,
+            _ => ContactState::Stick,
+        };
+    }
+    let mut solver = DirectSolver::default();
+    for (st, corrected) in [(&states, false), (&flipped, true)] {
+        let st: &[FaceState] = st;
+        let mut f = load.clone();
+        let blocks = contact_system(&x, st, &committed, &mut f);
+        solver.solve(&x, &blocks, &f, &mut u, true).expect("solve");
+        assert_eq!(solver.correction_rank().is_some(), corrected);
+        let m = solver.coupling(&rows, &cols).expect("a factor");
+        let mut largest = 0.0f64;
+        let mut worst = 0.0f64;
+        for (j, b) in cols.iter().enumerate() {
+            let mut fb = vec![0.0; x.n_free()];
+            for &(d, v) in b {
+                fb[d] += v;
+            }
+            let mut ub = vec![0.0; x.n_free()];
+            DirectSolver::default()
+                .solve(&x, &blocks, &fb, &mut ub, true)
+                .expect("whole solve");
+            for (i, a) in rows.iter().enumerate() {
+                let reference: f64 = a.iter().map(|&(d, v)| v * ub[d]).sum();
+                largest = largest.max(reference.abs());
+                worst = worst.max((m[(i, j)] - reference).abs());
+            }
+        }
+        println!(
+            "{}×{} couplings, corrected {corrected}: largest {largest:e}, worst difference {worst:e}",
+            rows.len(),
+            cols.len()
+        );
+        assert!(worst <= 1e-10 * largest, "{worst:e} of {largest:e}");
+    }
+}
+
+/// Reference: the same contact iteration with the friction limits
+/// Anderson-mixed (a solver that offers no couplings). Where the direct
+/// solver takes Newton's step to the limits' fixed point instead, the
+/// kinked flaw's contact solve ends in the same states with the same
+/// displacement (to the contact tolerance, 1e-8), in fewer iterations.
+#[test]
+fn the_friction_limits_newton_step_ends_where_the_mix_does() {
+    use cdca::contact::iteration::solve_with_contact;
+    use cdca::contact::law::FaceState;
+    use cdca::contact::status::{ContactParams, relative_change};
+    use cdca::discretisation::assembly::ElementBlock;
+    use cdca::discretisation::xfem::Xfem;
+    use cdca::error::SolveError;
+    use cdca::solvers::linear::{DirectSolver, LinearInfo, LinearSolver};
+    use cdca::solvers::relaxation::{RelaxStatus, ResidualSample};
+
+    /// The direct solver without its couplings.
+    #[derive(Default)]
+    struct Mixed(DirectSolver);
+    impl LinearSolver for Mixed {
+        fn name(&self) -> &'static str {
+            self.0.name()
+        }
+        fn start(
+            &mut self,
+            x: &Xfem,
+            blocks: &[ElementBlock],
+            f: &[f64],
+            u0: &[f64],
+            changed: bool,
+        ) -> Result<(), SolveError> {
+            self.0.start(x, blocks, f, u0, changed)
+        }
+        fn run(
+            &mut self,
+            x: &Xfem,
+            blocks: &[ElementBlock],
+            max: usize,
+        ) -> Result<RelaxStatus, SolveError> {
+            self.0.run(x, blocks, max)
+        }
+        fn u(&self) -> &[f64] {
+            self.0.u()
+        }
+        fn info(&self) -> LinearInfo {
+            self.0.info()
+        }
+        fn samples(&self) -> &[ResidualSample] {
+            self.0.samples()
+        }
+    }
+
+    let (x, load, _, newton_u, newton, info) = solved_kinked_flaw();
+    let committed = vec![FaceState::default(); x.faces.len()];
+    let mut mixed_u = vec![0.0; x.n_free()];
+    let (mixed, mixed_info) = solve_with_contact(
+        &x,
+        &load,
+        &committed,
+        &mut mixed_u,
+        &mut Mixed::default(),
+        ContactParams::default(),
+    )
+    .expect("solve");
+    println!(
+        "Newton: {} iterations, mix: {} iterations",
+        info.iterations, mixed_info.iterations
+    );
+    assert!(info.converged && mixed_info.converged);
+    let differ = newton
+        .iter()
+        .zip(&mixed)
+        .filter(|(a, b)| a.state != b.state)
+        .count();
+    assert_eq!(differ, 0);
+    let moved = relative_change(&newton_u, &mixed_u);
+    assert!(moved <= 1e-8, "{moved:e}");
+    assert!(info.iterations < mixed_info.iterations);
+}

@@ -11,6 +11,7 @@
 
 use crate::contact::law::{ContactState, FaceState, contact_system_split, gaps};
 use crate::contact::limit_mix::LimitMix;
+use crate::contact::limit_newton::newton_limits;
 use crate::contact::points::{
     coulomb_limits, coulomb_states, initial_limits, matrix_kinds, tresca_point, update_limited,
 };
@@ -250,7 +251,9 @@ impl ContactSolve {
         let linear_converged = lin.converged;
         self.reached.info.last = lin;
         match self.system.take() {
-            Some(system) => self.end_contact_iteration(x, committed, u, &system, linear_converged),
+            Some(system) => {
+                self.end_contact_iteration(x, committed, u, &system, linear_converged, &*solver)
+            }
             None => Ok(self.status(self.reached.finished)),
         }
     }
@@ -304,6 +307,7 @@ impl ContactSolve {
         u: &mut Vec<f64>,
         system: &System,
         linear_converged: bool,
+        solver: &dyn LinearSolver,
     ) -> Result<RelaxStatus, SolveError> {
         let it = self.reached.info.iterations + 1;
         // the tests are taken on g = u, the solution of the system
@@ -327,7 +331,17 @@ impl ContactSolve {
             differ(&sig, &system.signature)
         };
         let (residual, unsettled, settled) = if unsettled == 0 {
-            self.outer_step(x, committed, u, &mut states, &sig, &limits, more, solved)
+            self.outer_step(
+                x,
+                committed,
+                u,
+                &mut states,
+                &sig,
+                &limits,
+                more,
+                solved,
+                solver,
+            )
         } else {
             let change = relative_change(u, &self.before);
             self.damped_step(x, committed, u, &mut states, &limits, more, solved);
@@ -361,8 +375,11 @@ impl ContactSolve {
     /// the `limits` exactly. Converged (`states` become the Coulomb states)
     /// when the Coulomb return mapping at `g` gives the same states and the
     /// limits or the inner solutions settled; otherwise, with iterations
-    /// left (`more`), the limits move on ([`LimitMix::next`]) and `states`
-    /// are those of the new limits. `sig` is the [`signature`] of `states`
+    /// left (`more`), the limits move on and `states` are those of the new
+    /// limits: to their fixed point with these states by Newton's method
+    /// where the solver keeps a factor ([`newton_limits`]), else (or where
+    /// that step would open a slipping point) by the Anderson mix
+    /// ([`LimitMix::next`]). `sig` is the [`signature`] of `states`
     /// as they come. Returns the outer change, the points not in their
     /// Coulomb state, and whether it converged.
     #[allow(clippy::too_many_arguments)]
@@ -376,6 +393,7 @@ impl ContactSolve {
         limits: &[f64],
         more: bool,
         solved: Vec<f64>,
+        solver: &dyn LinearSolver,
     ) -> (f64, usize, bool) {
         let target = coulomb_limits(x, u);
         let outer = self.inner_solution.as_ref().map(|p| relative_change(u, p));
@@ -401,7 +419,10 @@ impl ContactSolve {
             *states = coulomb;
         } else if more {
             self.inner_solution = Some(u.to_vec());
-            let next = self.limit_mix.next(limits, target);
+            let newton = newton_limits(x, u, states, limits, &target, solver);
+            // the mix keeps its history of the map either way
+            let mixed = self.limit_mix.next(limits, target);
+            let next = newton.unwrap_or(mixed);
             states.clone_from(&self.reached.states);
             update_limited(
                 x,

@@ -8,13 +8,19 @@ use std::sync::Arc;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::SparseColMatRef;
-use faer::sparse::linalg::cholesky::LltRef;
+use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
+use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
+use faer::sparse::linalg::triangular_solve::{
+    solve_lower_triangular_in_place, solve_lower_triangular_transpose_in_place,
+};
 use faer::{Conj, MatMut, Side, Spec, get_global_parallelism};
+use nalgebra::DMatrix;
 
 use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::pattern::{Ordered, Pattern};
 use crate::discretisation::xfem::{NOT_INTEGRATED, REGULAR, Xfem};
 use crate::error::SolveError;
+use crate::solvers::forward::{Reached, SparseColumn};
 use crate::solvers::low_rank::{Correction, MAX_RANK, Terms};
 
 /// A factorised stiffness matrix, reusable for several right-hand sides.
@@ -145,15 +151,13 @@ impl Factor {
         let Ok(pattern) = x.pattern() else {
             return false;
         };
-        let n = self.ordered.perm.len();
         let regular = self.regular;
         let correction = Correction::new(
-            n,
             terms,
             blocks,
             &self.a,
             |slot, d, vals| pattern.add(regular + slot, d.as_slice(), vals),
-            |z, r| self.solve_factorised(z, r),
+            |columns| self.forward_columns(columns),
         );
         self.correction = correction;
         self.correction.is_some()
@@ -177,19 +181,94 @@ impl Factor {
         self.correction.as_ref().map(Correction::rank)
     }
 
-    /// Solves the factorised matrix for the `r` reordered columns of `y`
-    /// (column-major) in place.
-    fn solve_factorised(&self, y: &mut [f64], r: usize) {
+    /// `y ← L⁻¹ y` for the `r` reordered columns of `y` (column-major).
+    fn forward(&self, y: &mut [f64], r: usize) {
+        self.triangular(y, r, true);
+    }
+
+    /// `y ← L⁻ᵀ y` for the `r` reordered columns of `y` (column-major).
+    fn backward(&self, y: &mut [f64], r: usize) {
+        self.triangular(y, r, false);
+    }
+
+    fn triangular(&self, y: &mut [f64], r: usize, lower: bool) {
         let o = &*self.ordered;
         let n = o.perm.len();
         let par = get_global_parallelism();
-        let mut mem = MemBuffer::new(o.symbolic.solve_in_place_scratch::<f64>(r, par));
-        LltRef::new(&o.symbolic, &self.l).solve_in_place_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(y, n, r),
-            par,
-            MemStack::new(&mut mem),
-        );
+        let y = MatMut::from_column_major_slice_mut(y, n, r);
+        match o.symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(symbolic) => {
+                let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(r, par));
+                let l = SupernodalLltRef::new(symbolic, &self.l);
+                let stack = MemStack::new(&mut mem);
+                if lower {
+                    l.l_solve_with_conj(Conj::No, y, par, stack);
+                } else {
+                    l.l_transpose_solve_with_conj(Conj::No, y, par, stack);
+                }
+            }
+            SymbolicCholeskyRaw::Simplicial(symbolic) => {
+                let l = SparseColMatRef::new(symbolic.factor(), &self.l);
+                if lower {
+                    solve_lower_triangular_in_place(l, Conj::No, y, par);
+                } else {
+                    solve_lower_triangular_transpose_in_place(l, Conj::No, y, par);
+                }
+            }
+        }
+    }
+
+    /// `L⁻¹ b` for the sparse reordered columns `b`: on the supernodes they
+    /// reach, or, with a simplicial factor, on every row.
+    fn forward_columns(&self, b: &[SparseColumn]) -> Reached {
+        match self.ordered.symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(symbolic) => Reached::forward(symbolic, &self.l, b),
+            SymbolicCholeskyRaw::Simplicial(_) => {
+                let n = self.ordered.perm.len();
+                let mut values = vec![0.0; n * b.len()];
+                for (j, column) in b.iter().enumerate() {
+                    for &(p, v) in column {
+                        values[j * n + p] += v;
+                    }
+                }
+                self.forward(&mut values, b.len());
+                Reached {
+                    rows: (0..n).collect(),
+                    values,
+                    columns: b.len(),
+                }
+            }
+        }
+    }
+
+    /// `aᵀ K⁻¹ b` for every `a` of `rows` and `b` of `cols` (sparse, by
+    /// DOF; `K` the matrix this factor solves, through its correction if
+    /// any), column-major `rows.len() × cols.len()`: from the forward
+    /// solves of the vectors alone, `(L⁻¹ a)ᵀ (L⁻¹ b)` on the part of the
+    /// factor they reach ([`Reached`]), with the correction's
+    /// `(aᵀ K⁻¹ U) (I + C Uᵀ K⁻¹ U)⁻¹ C (Uᵀ K⁻¹ b)` taken off.
+    pub fn coupling(&self, rows: &[SparseColumn], cols: &[SparseColumn]) -> DMatrix<f64> {
+        let inv = &self.ordered.inv;
+        let reorder =
+            |c: &SparseColumn| -> SparseColumn { c.iter().map(|&(d, a)| (inv[d], a)).collect() };
+        let (na, nb) = (rows.len(), cols.len());
+        let mut all: Vec<SparseColumn> = rows.iter().chain(cols).map(reorder).collect();
+        if let Some(c) = &self.correction {
+            all.extend_from_slice(c.vectors());
+        }
+        let w = self.forward_columns(&all);
+        let inner = |a: std::ops::Range<usize>, b: std::ops::Range<usize>| {
+            DMatrix::from_vec(a.len(), b.len(), w.inner(a, b))
+        };
+        let mut m = inner(0..na, na..na + nb);
+        if let Some(c) = &self.correction {
+            let (u, r) = (na + nb, c.rank());
+            if r > 0 {
+                let s = c.weights(&inner(u..u + r, na..na + nb));
+                m -= inner(0..na, u..u + r) * s;
+            }
+        }
+        m
     }
 
     /// The values of the matrix this factor solves.
@@ -201,10 +280,11 @@ impl Factor {
     pub fn solve(&self, f: &[f64]) -> Result<Vec<f64>, SolveError> {
         let o = &*self.ordered;
         let mut y: Vec<f64> = o.perm.iter().map(|&d| f[d]).collect();
-        self.solve_factorised(&mut y, 1);
+        self.forward(&mut y, 1);
         if let Some(c) = &self.correction {
-            c.apply(&mut y);
+            c.adjust_forward(&mut y);
         }
+        self.backward(&mut y, 1);
         let u: Vec<f64> = o.inv.iter().map(|&i| y[i]).collect();
         if let Some(i) = u.iter().position(|v| !v.is_finite()) {
             return Err(SolveError::NonFinite {

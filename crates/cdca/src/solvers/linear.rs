@@ -5,6 +5,7 @@
 //! [`LinearSolver::run`] advances it by a few iterations, and the blocking
 //! [`LinearSolver::solve`] is a loop over the two.
 
+use nalgebra::DMatrix;
 use web_time::Instant;
 
 use crate::discretisation::assembly::ElementBlock;
@@ -12,6 +13,7 @@ use crate::discretisation::xfem::Xfem;
 use crate::error::SolveError;
 use crate::scene::DIRECT_TOLERANCE;
 use crate::solvers::direct::Factor;
+use crate::solvers::forward::SparseColumn;
 use crate::solvers::relaxation::{RelaxStatus, ResidualSample};
 
 /// What one linear solve did.
@@ -71,6 +73,15 @@ pub trait LinearSolver {
     /// Progress samples of the started solve with their times, s (setup
     /// included).
     fn samples(&self) -> &[ResidualSample];
+
+    /// `aᵀ K⁻¹ b` for every `a` of `rows` and `b` of `cols` (sparse, by
+    /// DOF), `K` the matrix of the started solve, column-major
+    /// `rows.len() × cols.len()`: how a force along `b` moves the
+    /// displacement along `a`, without a solve of the whole system. `None`
+    /// for a solver that keeps no factor.
+    fn coupling(&self, _rows: &[SparseColumn], _cols: &[SparseColumn]) -> Option<DMatrix<f64>> {
+        None
+    }
 
     /// The whole solve at once: [`start`](Self::start), then
     /// [`run`](Self::run) until it has finished; `u` is the starting guess
@@ -314,6 +325,10 @@ impl LinearSolver for DirectSolver {
 
     fn factorised_at_start(&self) -> bool {
         self.factorised_at_start
+    }
+
+    fn coupling(&self, rows: &[SparseColumn], cols: &[SparseColumn]) -> Option<DMatrix<f64>> {
+        self.factors.first().map(|f| f.coupling(rows, cols))
     }
 
     fn samples(&self) -> &[ResidualSample] {

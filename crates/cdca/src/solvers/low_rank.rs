@@ -14,8 +14,13 @@
 //! `K'⁻¹ f = y − Z (I + C Uᵀ Z)⁻¹ C Uᵀ y`, `y = K⁻¹ f`, `Z = K⁻¹ U`
 //!
 //! (the form without `C⁻¹`: a penalty's eigenvalues span many decades).
-//! Setting it up costs `r` solves with the factor (one block solve); each
-//! solve after that one solve with the factor and `O(n r)`. The caller
+//! With `K = L Lᵀ` (reordered), `Uᵀ Z = Wᵀ W` and `Uᵀ y = Wᵀ z` for
+//! `W = L⁻¹ U` and the forward solve `z = L⁻¹ f`, and `Z s = L⁻ᵀ (W s)`:
+//! so the correction is made between the two triangular solves of the
+//! factor ([`Correction::adjust_forward`]), and a corrected solve costs what
+//! a factorised one does. Setting it up costs the forward solves of the
+//! `r` sparse columns of `U` on the part of the factor they reach
+//! ([`Reached`]), not `r` whole solves. The caller
 //! checks the true residual with `K'` and refines, so the dropped
 //! eigenpairs (round-off of the difference) do not reach the solution.
 
@@ -24,6 +29,7 @@ use nalgebra::{DMatrix, DVector, SymmetricEigen};
 use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::dofs::FIXED;
 use crate::discretisation::xfem::Xfem;
+use crate::solvers::forward::{Reached, SparseColumn};
 
 /// Eigenvalues of a block difference below this fraction of its largest
 /// are round-off (a difference of whole penalty terms has `2m` nonzero
@@ -44,7 +50,7 @@ pub struct Terms {
     /// `λ` per term.
     lambda: Vec<f64>,
     /// `v` per term.
-    vectors: Vec<Vec<(usize, f64)>>,
+    vectors: Vec<SparseColumn>,
     /// The changed blocks: slot and `new − old`, element DOF order.
     changed: Vec<(usize, DMatrix<f64>)>,
 }
@@ -106,7 +112,7 @@ impl Terms {
 }
 
 /// An element vector at the reordered positions of its free DOFs.
-fn scatter(dofs: &[u32], v: &DVector<f64>, inv: &[usize]) -> Vec<(usize, f64)> {
+fn scatter(dofs: &[u32], v: &DVector<f64>, inv: &[usize]) -> SparseColumn {
     dofs.iter()
         .zip(v.iter())
         .filter(|&(&d, &a)| d != FIXED && a != 0.0)
@@ -121,40 +127,32 @@ pub struct Correction {
     /// Values of the corrected matrix (the reordered lower triangle).
     pub a: Vec<f64>,
     terms: Terms,
-    /// `Z = K⁻¹ U`, reordered, column-major `n × r`.
-    z: Vec<f64>,
-    /// LU of `I + C Uᵀ Z`.
+    /// `W = L⁻¹ U` (`K = L Lᵀ`, reordered) on the rows it reaches.
+    w: Reached,
+    /// LU of `I + C Wᵀ W = I + C Uᵀ K⁻¹ U`.
     lu: nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
 }
 
 impl Correction {
-    /// Sets up the correction `terms` of an `n × n` matrix whose values
-    /// are `a`, giving the contact blocks `blocks`: `add` adds a changed
-    /// block (slot, `new − old`) into a copy of `a`; `solve_block` solves
-    /// with the factorised matrix in place (reordered, column-major
-    /// `n × r`). `None` when `I + C Uᵀ Z` is singular (so is the corrected
-    /// matrix).
+    /// Sets up the correction `terms` of a matrix whose values are `a`,
+    /// giving the contact blocks `blocks`: `add` adds a changed block
+    /// (slot, `new − old`) into a copy of `a`; `forward` gives `L⁻¹` of
+    /// sparse reordered columns ([`Reached`]). `None` when `I + C Uᵀ K⁻¹ U`
+    /// is singular (so is the corrected matrix).
     pub fn new(
-        n: usize,
         terms: Terms,
         blocks: &[ElementBlock],
         a: &[f64],
         add: impl Fn(usize, &DMatrix<f64>, &mut [f64]),
-        solve_block: impl FnOnce(&mut [f64], usize),
+        forward: impl FnOnce(&[SparseColumn]) -> Reached,
     ) -> Option<Self> {
         let r = terms.rank();
-        let mut z = vec![0.0; n * r];
-        for (k, v) in terms.vectors.iter().enumerate() {
-            for &(p, a) in v {
-                z[k * n + p] = a;
-            }
-        }
-        solve_block(&mut z, r);
+        let w = forward(&terms.vectors);
+        let wtw = DMatrix::from_column_slice(r, r, &w.inner(0..r, 0..r));
         let mut m = DMatrix::identity(r, r);
-        for (i, v) in terms.vectors.iter().enumerate() {
+        for i in 0..r {
             for k in 0..r {
-                let uz: f64 = v.iter().map(|&(p, a)| a * z[k * n + p]).sum();
-                m[(i, k)] += terms.lambda[i] * uz;
+                m[(i, k)] += terms.lambda[i] * wtw[(i, k)];
             }
         }
         let lu = m.lu();
@@ -169,7 +167,7 @@ impl Correction {
             blocks: blocks.to_vec(),
             a: values,
             terms,
-            z,
+            w,
             lu,
         })
     }
@@ -179,26 +177,39 @@ impl Correction {
         self.terms.rank()
     }
 
-    /// Turns `y = K⁻¹ f` (reordered) into `K'⁻¹ f`:
-    /// `y ← y − Z (I + C Uᵀ Z)⁻¹ C Uᵀ y`.
-    pub fn apply(&self, y: &mut [f64]) {
-        if self.rank() == 0 {
+    /// The columns `U` of the correction (sparse, reordered).
+    pub fn vectors(&self) -> &[SparseColumn] {
+        &self.terms.vectors
+    }
+
+    /// `(I + C Uᵀ K⁻¹ U)⁻¹ C v`: what the correction does with `v = Uᵀ K⁻¹ b`.
+    pub fn weights(&self, v: &DMatrix<f64>) -> DMatrix<f64> {
+        let cv = DMatrix::from_fn(v.nrows(), v.ncols(), |k, j| {
+            self.terms.lambda[k] * v[(k, j)]
+        });
+        self.lu.solve(&cv).expect("checked invertible when set up")
+    }
+
+    /// Turns the forward solve `z = L⁻¹ P f` of `K u = f` into that of
+    /// `K' u = f`, so that the backward solve `Lᵀ` of it gives `K'⁻¹ f`:
+    /// `K'⁻¹ f = K⁻¹ f − K⁻¹ U s` with `s = (I + C Uᵀ K⁻¹ U)⁻¹ C Uᵀ K⁻¹ f`,
+    /// and `Uᵀ K⁻¹ f = Wᵀ z`, `K⁻¹ U s = L⁻ᵀ (W s)`, so `z ← z − W s`.
+    pub fn adjust_forward(&self, z: &mut [f64]) {
+        let r = self.rank();
+        if r == 0 {
             // blocks that differ by zero blocks only
             return;
         }
-        let n = y.len();
-        let t = DVector::from_iterator(
-            self.rank(),
-            self.terms
-                .vectors
-                .iter()
-                .zip(&self.terms.lambda)
-                .map(|(v, l)| l * v.iter().map(|&(p, a)| a * y[p]).sum::<f64>()),
-        );
-        let s = self.lu.solve(&t).expect("checked invertible when set up");
-        for (k, &sk) in s.iter().enumerate() {
-            for (yi, zi) in y.iter_mut().zip(&self.z[k * n..(k + 1) * n]) {
-                *yi -= sk * zi;
+        let rows = &self.w.rows;
+        let nr = rows.len();
+        let column = |k: usize| &self.w.values[k * nr..(k + 1) * nr];
+        let v = DMatrix::from_fn(r, 1, |k, _| {
+            column(k).iter().zip(rows).map(|(a, &p)| a * z[p]).sum()
+        });
+        let s = self.weights(&v);
+        for k in 0..r {
+            for (a, &p) in column(k).iter().zip(rows) {
+                z[p] -= s[k] * a;
             }
         }
     }

@@ -13,6 +13,7 @@ pub mod cells;
 pub mod choice;
 pub mod direct;
 pub mod element_op;
+pub mod forward;
 pub mod linear;
 pub mod low_rank;
 pub mod multigrid;

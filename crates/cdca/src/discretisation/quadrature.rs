@@ -8,8 +8,22 @@
 
 use crate::geometry::plane::P2;
 
-/// Gauss–Legendre points and weights on [−1, 1] (Newton on P_n).
-pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+/// Rules of up to this many points are computed once and kept.
+const KEPT_ORDERS: usize = 64;
+
+/// Gauss–Legendre points and weights on [−1, 1] (Newton on P_n), each
+/// order computed once (an enriched element's sub-cell rules ask for the
+/// same few orders thousands of times a discretisation).
+pub fn gauss_legendre(n: usize) -> std::borrow::Cow<'static, [(f64, f64)]> {
+    static KEPT: [std::sync::OnceLock<Vec<(f64, f64)>>; KEPT_ORDERS] =
+        [const { std::sync::OnceLock::new() }; KEPT_ORDERS];
+    match KEPT.get(n.wrapping_sub(1)) {
+        Some(kept) => std::borrow::Cow::Borrowed(kept.get_or_init(|| legendre_rule(n))),
+        None => std::borrow::Cow::Owned(legendre_rule(n)),
+    }
+}
+
+fn legendre_rule(n: usize) -> Vec<(f64, f64)> {
     assert!(n >= 1, "at least one Gauss point");
     let mut out = Vec::with_capacity(n);
     for i in 0..n {
@@ -49,8 +63,8 @@ pub fn box_rule(lo: P2, hi: P2, n: usize, out: &mut Vec<QPoint>) {
     let g = gauss_legendre(n);
     let (cx, cy) = (0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y));
     let (ax, ay) = (0.5 * (hi.x - lo.x), 0.5 * (hi.y - lo.y));
-    for &(s, ws) in &g {
-        for &(t, wt) in &g {
+    for &(s, ws) in g.iter() {
+        for &(t, wt) in g.iter() {
             out.push(QPoint {
                 x: P2::new(cx + ax * s, cy + ay * t),
                 w: ws * wt * ax * ay,
@@ -66,9 +80,9 @@ pub fn collapsed_triangle_rule(apex: P2, b: P2, c: P2, n: usize, out: &mut Vec<Q
     let g = gauss_legendre(n);
     let (eb, ec) = (b - apex, c - apex);
     let det = (eb.x * ec.y - eb.y * ec.x).abs();
-    for &(s, ws) in &g {
+    for &(s, ws) in g.iter() {
         let u = 0.5 * (s + 1.0);
-        for &(t, wt) in &g {
+        for &(t, wt) in g.iter() {
             let v = 0.5 * (t + 1.0);
             out.push(QPoint {
                 x: apex + u * ((1.0 - v) * eb + v * ec),
@@ -87,10 +101,10 @@ pub fn graded_triangle_rule(apex: P2, b: P2, c: P2, n: usize, out: &mut Vec<QPoi
     let g = gauss_legendre(n);
     let (eb, ec) = (b - apex, c - apex);
     let det = (eb.x * ec.y - eb.y * ec.x).abs();
-    for &(sg, ws) in &g {
+    for &(sg, ws) in g.iter() {
         let s = 0.5 * (sg + 1.0);
         let u = s * s;
-        for &(t, wt) in &g {
+        for &(t, wt) in g.iter() {
             let v = 0.5 * (t + 1.0);
             out.push(QPoint {
                 x: apex + u * ((1.0 - v) * eb + v * ec),
@@ -103,7 +117,7 @@ pub fn graded_triangle_rule(apex: P2, b: P2, c: P2, n: usize, out: &mut Vec<QPoi
 /// Gauss rule with `n` points on the segment `ab`.
 pub fn segment_rule(a: P2, b: P2, n: usize, out: &mut Vec<QPoint>) {
     let half = 0.5 * (b - a).norm();
-    for (s, w) in gauss_legendre(n) {
+    for &(s, w) in gauss_legendre(n).iter() {
         out.push(QPoint {
             x: a + 0.5 * (s + 1.0) * (b - a),
             w: w * half,

@@ -182,7 +182,7 @@ fn graded_segment_rule(far: P2, near: P2, gap: f64, n: usize, out: &mut Vec<QPoi
     let len = (far - near).norm();
     let dir = (far - near) / len;
     let (t0, t1) = (gap.sqrt(), (gap + len).sqrt());
-    for (s, w) in crate::discretisation::quadrature::gauss_legendre(n) {
+    for &(s, w) in crate::discretisation::quadrature::gauss_legendre(n).iter() {
         let t = t0 + 0.5 * (s + 1.0) * (t1 - t0);
         out.push(QPoint {
             x: near + dir * (t * t - gap),

@@ -36,11 +36,14 @@ use crate::solvers::forward::{Reached, SparseColumn};
 /// eigenvalues and the rest at ~1e-16 of them).
 pub const DROP: f64 = 1e-12;
 
-/// The largest rank of a correction. Setting one up costs about as much
-/// as a numeric factorisation at rank ≈ 30 on 60 × 60 elements and ≈ 40
-/// on 100 × 100 (the crossover grows with the mesh: a factorisation costs
-/// `O(n^1.5)`, a solve `O(n log n)`); measured in `docs/benchmarks.md`,
-/// "Contact changes as low-rank corrections".
+/// The largest rank of a correction. Set up from forward solves on the
+/// part of the factor the changed points reach, a correction of rank 9–24
+/// costs 0.4 ms on 60 × 60 elements and 0.7 ms on 100 × 100, against a
+/// numeric factorisation's 3.6 and 16 ms, so the crossover lies far above
+/// this cap; raised to 64 and 128 it changed no run's time (the
+/// factorisations left are each discretisation's first), so it stays
+/// where the correction's accuracy was checked (`docs/benchmarks.md`,
+/// "Contact solves on the part of the factor the faces reach").
 pub const MAX_RANK: usize = 24;
 
 /// The difference between two sets of contact blocks on one

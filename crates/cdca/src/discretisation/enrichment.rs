@@ -148,12 +148,22 @@ pub fn branch(frame: &TipFrame, x: P2, phi: f64, grad_phi: P2) -> EnrValue {
     if r <= 0.0 {
         return v; // values vanish at the tip; gradients are never needed there
     }
-    let th = phi.atan2(psi);
     let grad_r = (grad_phi * phi + frame.e1 * psi) / r;
     let grad_th = (grad_phi * psi - frame.e1 * phi) / (r * r);
     let sr = r.sqrt();
-    let (s2, c2) = (0.5 * th).sin_cos();
-    let (s, c) = th.sin_cos();
+    // sin θ, cos θ and the half angles without trigonometry (this runs at
+    // every quadrature point of every tip element): cos(θ/2) ≥ 0 on
+    // θ ∈ [−π, π], sin(θ/2) takes φ's sign (θ = ±π on the faces behind
+    // the tip, as atan2 of a signed zero), and each from the side where
+    // it does not cancel
+    let (s, c) = (phi / r, psi / r);
+    let (s2, c2) = if psi >= 0.0 {
+        let c2 = ((r + psi) / (2.0 * r)).sqrt();
+        (phi / (2.0 * r * c2), c2)
+    } else {
+        let s2 = ((r - psi) / (2.0 * r)).sqrt().copysign(phi);
+        (s2, phi / (2.0 * r * s2))
+    };
     let f = [sr * s2, sr * c2, sr * s * s2, sr * s * c2];
     // ∂F/∂r and ∂F/∂θ
     let fr = [
@@ -206,6 +216,40 @@ mod tests {
                 (dx - v.g[i].x).abs() < 1e-6 && (dy - v.g[i].y).abs() < 1e-6,
                 "F{i}"
             );
+        }
+    }
+
+    /// Reference: the four functions `√r (sin θ/2, cos θ/2, sin θ sin θ/2,
+    /// sin θ cos θ/2)` with θ from atan2, around the tip (θ near 0, ±π/2
+    /// and on the faces behind it, φ = ±0 exactly: θ = ±π), to 1e-15.
+    #[test]
+    fn branch_functions_match_their_trigonometric_form() {
+        let frame = TipFrame {
+            origin: P2::new(0.0, 0.0),
+            e1: P2::new(1.0, 0.0),
+            e2: P2::new(0.0, 1.0),
+        };
+        let points = [
+            (0.3, 1e-9),
+            (0.3, -1e-9),
+            (1e-9, 0.4),
+            (-0.2, 0.7),
+            (-0.5, 1e-12),
+            (-0.5, 0.0),
+            (-0.5, -0.0),
+            (0.1, -0.9),
+        ];
+        for (psi, phi) in points {
+            let v = branch(&frame, P2::new(psi, phi), phi, frame.e2);
+            let (r, th) = (f64::hypot(phi, psi), f64::atan2(phi, psi));
+            let (s2, c2) = (0.5 * th).sin_cos();
+            let want = [s2, c2, th.sin() * s2, th.sin() * c2].map(|f| r.sqrt() * f);
+            for (i, (got, want)) in v.f.iter().zip(want).enumerate() {
+                assert!(
+                    (got - want).abs() <= 1e-15,
+                    "F{i} at ψ {psi}, φ {phi}: {got} vs {want}"
+                );
+            }
         }
     }
 

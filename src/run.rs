@@ -178,9 +178,10 @@ impl Growth {
                         status,
                     });
                 }
-                // a new discretisation is ready: the direct solver's first
-                // call on it factorises, in one call, so it opens a frame
-                // unless it fits in what is left of this one
+                // a new discretisation is ready: the direct solver's next
+                // calls factorise it, a slice each (`FACTOR_SLICE_FLOPS`),
+                // so they open a frame unless one fits in what is left of
+                // this one
                 if preparing
                     && sim.rebuild_progress().is_none()
                     && sim.scene().solver.kind == SolverKind::Direct

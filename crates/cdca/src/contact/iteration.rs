@@ -222,16 +222,9 @@ impl ContactSolve {
         let Some(system) = &mut self.system else {
             self.set_up(x, committed, factored, u, solver)?;
             if solver.factorised_at_start() {
-                // a factorisation is a call of its own (one frame slice in
-                // the workbench): the solve runs in the next call
-                return Ok(RelaxStatus {
-                    residual: if self.done_iterations == 0 {
-                        1.0
-                    } else {
-                        self.reached.info.last.residual
-                    },
-                    ..self.status(false)
-                });
+                // a factorisation runs in calls of its own (frame slices in
+                // the workbench): the solve follows it
+                return Ok(self.waiting());
             }
             return self.advance(x, committed, factored, u, solver, max_iterations);
         };
@@ -252,6 +245,10 @@ impl ContactSolve {
                 }),
         );
         system.copied = samples.len();
+        if !status.finished && status.iterations == 0 {
+            // the linear solver is still setting up (a factorisation)
+            return Ok(self.waiting());
+        }
         if !status.finished {
             return Ok(RelaxStatus {
                 iterations: self.done_iterations + status.iterations,
@@ -272,6 +269,19 @@ impl ContactSolve {
                 self.end_contact_iteration(x, committed, u, &system, linear_converged, &*solver)
             }
             None => Ok(self.status(self.reached.finished)),
+        }
+    }
+
+    /// The progress while a linear solve is set up: the last contact
+    /// iteration's residual (1 before the first).
+    fn waiting(&self) -> RelaxStatus {
+        RelaxStatus {
+            residual: if self.done_iterations == 0 {
+                1.0
+            } else {
+                self.reached.info.last.residual
+            },
+            ..self.status(false)
         }
     }
 

@@ -22,6 +22,13 @@ use crate::discretisation::xfem::{NOT_INTEGRATED, REGULAR, Xfem};
 use crate::error::SolveError;
 use crate::solvers::forward::{Reached, SparseColumn};
 use crate::solvers::low_rank::{Correction, MAX_RANK, Terms};
+use crate::solvers::supernodal::{self, Updates};
+
+/// The floating-point operations of one slice of a numeric factorisation
+/// ([`Factor::factorise_slice`]): about 1 ms natively and 4–5 ms in a
+/// browser, a quarter of a factorisation of the default scene (60 × 60,
+/// 5–7e7 as [`Updates`] counts them).
+pub const FACTOR_SLICE_FLOPS: f64 = 1.5e7;
 
 /// A factorised stiffness matrix, reusable for several right-hand sides.
 pub struct Factor {
@@ -40,12 +47,34 @@ pub struct Factor {
     /// The relative residual the factorised matrix's last solve reached
     /// (0 before one).
     floor: f64,
+    /// A supernodal factor's updates, shared by the factors of one
+    /// pattern.
+    updates: Option<Arc<Updates>>,
+    /// The next supernode to factorise, while the numeric factorisation is
+    /// under way ([`factorise_slice`](Self::factorise_slice)).
+    pending: Option<usize>,
 }
 
 impl Factor {
     /// Assembles and factorises `K` (bulk plus `extra` blocks) into the
     /// discretisation's stiffness pattern, reusing its symbolic factorisation.
     pub fn new(x: &Xfem, extra: &[ElementBlock]) -> Result<Self, SolveError> {
+        Self::assembled(x, extra, None)?.factorised()
+    }
+
+    /// [`Factor::new`] in this factor's storage.
+    pub fn refactor(self, x: &Xfem, extra: &[ElementBlock]) -> Result<Self, SolveError> {
+        self.reassemble(x, extra)?.factorised()
+    }
+
+    /// `K` (bulk plus `extra` blocks) assembled, not yet factorised (see
+    /// [`factorise_slice`](Self::factorise_slice)); `updates` are those of
+    /// another factor on the same pattern, if any.
+    pub fn assembled(
+        x: &Xfem,
+        extra: &[ElementBlock],
+        updates: Option<Arc<Updates>>,
+    ) -> Result<Self, SolveError> {
         let factor = Self {
             ordered: Arc::clone(x.pattern()?.ordered()),
             a: Vec::new(),
@@ -54,14 +83,19 @@ impl Factor {
             regular: 0,
             correction: None,
             floor: 0.0,
+            updates,
+            pending: None,
         };
-        factor.refactor(x, extra)
+        factor.reassemble(x, extra)
     }
 
-    /// [`Factor::new`] in this factor's storage.
-    pub fn refactor(mut self, x: &Xfem, extra: &[ElementBlock]) -> Result<Self, SolveError> {
+    /// [`Factor::assembled`] in this factor's storage.
+    pub fn reassemble(mut self, x: &Xfem, extra: &[ElementBlock]) -> Result<Self, SolveError> {
         assert!(x.is_integrated(), "{NOT_INTEGRATED}");
         let pattern = x.pattern()?;
+        if !Arc::ptr_eq(&self.ordered, pattern.ordered()) {
+            self.updates = None;
+        }
         self.ordered = Arc::clone(pattern.ordered());
         resize_spare(&mut self.a, self.ordered.lower.row_idx().len());
         self.a.fill(0.0);
@@ -79,26 +113,75 @@ impl Factor {
         for b in extra {
             pattern.add(e + b.slot, b.k.as_slice(), &mut self.a);
         }
-        self.factorise()?;
         self.blocks.clear();
         self.blocks.extend_from_slice(extra);
         self.regular = e;
         self.correction = None;
         self.floor = 0.0;
+        // zeroed by the factorisation
+        resize_spare(&mut self.l, self.ordered.symbolic.len_val());
+        self.pending = Some(0);
         Ok(self)
     }
 
-    /// The numeric factorisation of the assembled values `a` into `l`.
+    /// This factor with its factorisation finished.
+    fn factorised(mut self) -> Result<Self, SolveError> {
+        while !self.factorise_slice(f64::INFINITY)? {}
+        Ok(self)
+    }
+
+    /// Whether the numeric factorisation is complete (only then does the
+    /// factor solve).
+    pub fn is_factorised(&self) -> bool {
+        self.pending.is_none()
+    }
+
+    /// Factorises the next supernodes, about `flops` floating-point
+    /// operations of them (at least one supernode; a simplicial factor all
+    /// at once): whether the factorisation is now complete.
+    pub fn factorise_slice(&mut self, flops: f64) -> Result<bool, SolveError> {
+        let Some(from) = self.pending else {
+            return Ok(true);
+        };
+        let o = &*self.ordered;
+        let SymbolicCholeskyRaw::Supernodal(symbolic) = o.symbolic.raw() else {
+            self.factorise()?;
+            self.pending = None;
+            return Ok(true);
+        };
+        let updates = Arc::clone(
+            self.updates
+                .get_or_insert_with(|| Arc::new(Updates::new(symbolic))),
+        );
+        let to = updates.slice_end(from, flops);
+        let a = SparseColMatRef::new(o.lower.as_ref(), &self.a);
+        supernodal::factorise(symbolic, &updates, a, &mut self.l, from..to).map_err(|column| {
+            not_positive_definite(
+                o.perm.len(),
+                &format!("non-positive pivot at column {column}"),
+            )
+        })?;
+        self.pending = (to < updates.len()).then_some(to);
+        Ok(self.pending.is_none())
+    }
+
+    /// Whether this factor is of the discretisation that owns `pattern`.
+    pub fn is_on(&self, pattern: &Pattern) -> bool {
+        Arc::ptr_eq(&self.ordered, pattern.ordered())
+    }
+
+    /// The updates of this factor's supernodes, once made.
+    pub fn updates(&self) -> Option<&Arc<Updates>> {
+        self.updates.as_ref()
+    }
+
+    /// The numeric factorisation of the assembled values `a` into `l`, in
+    /// one call (a simplicial factor).
     fn factorise(&mut self) -> Result<(), SolveError> {
         let o = &*self.ordered;
         let n = o.perm.len();
-        // zeroed by the factorisation
-        resize_spare(&mut self.l, o.symbolic.len_val());
         let par = get_global_parallelism();
-        let not_pd = |detail: String| SolveError::NotPositiveDefinite {
-            dofs: n,
-            detail: format!("{detail} (a mechanism: check supports, or a singular enrichment)"),
-        };
+        let not_pd = |detail: String| not_positive_definite(n, &detail);
         let mut mem = MemBuffer::try_new(
             o.symbolic
                 .factorize_numeric_llt_scratch::<f64>(par, Spec::default()),
@@ -123,7 +206,7 @@ impl Factor {
     /// factorised or through its correction; the factorised matrix drops
     /// the correction.
     pub fn select(&mut self, pattern: &Pattern, blocks: &[ElementBlock]) -> bool {
-        if !Arc::ptr_eq(&self.ordered, pattern.ordered()) {
+        if !self.is_on(pattern) {
             return false;
         }
         if self.blocks == blocks {
@@ -138,7 +221,7 @@ impl Factor {
     /// rank is at most [`MAX_RANK`].
     pub fn difference(&self, x: &Xfem, blocks: &[ElementBlock]) -> Option<Terms> {
         let pattern = x.pattern().ok()?;
-        if !Arc::ptr_eq(&self.ordered, pattern.ordered()) {
+        if !self.is_factorised() || !Arc::ptr_eq(&self.ordered, pattern.ordered()) {
             return None;
         }
         Terms::between(x, &self.ordered.inv, &self.blocks, blocks, MAX_RANK)
@@ -324,6 +407,14 @@ impl Factor {
         for (d, &i) in o.inv.iter().enumerate() {
             r[d] = rp[i];
         }
+    }
+}
+
+/// A factorisation that met a non-positive pivot.
+fn not_positive_definite(dofs: usize, detail: &str) -> SolveError {
+    SolveError::NotPositiveDefinite {
+        dofs,
+        detail: format!("{detail} (a mechanism: check supports, or a singular enrichment)"),
     }
 }
 

@@ -12,7 +12,7 @@ use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::xfem::Xfem;
 use crate::error::SolveError;
 use crate::scene::DIRECT_TOLERANCE;
-use crate::solvers::direct::Factor;
+use crate::solvers::direct::{FACTOR_SLICE_FLOPS, Factor};
 use crate::solvers::forward::SparseColumn;
 use crate::solvers::relaxation::{RelaxStatus, ResidualSample};
 
@@ -64,8 +64,10 @@ pub trait LinearSolver {
     /// The started solve so far.
     fn info(&self) -> LinearInfo;
 
-    /// The last [`start`](Self::start) factorised the matrix (a call that
-    /// cannot be split: the workbench gives it a frame slice of its own).
+    /// The last [`start`](Self::start) set a factorisation up: it runs in
+    /// the next [`run`](Self::run) calls, a slice of about
+    /// [`FACTOR_SLICE_FLOPS`] each (the workbench gives each a frame slice
+    /// of its own), before the solve.
     fn factorised_at_start(&self) -> bool {
         false
     }
@@ -173,18 +175,44 @@ impl DirectSolver {
         self.factors[i].correct(x, terms, blocks).then_some(i)
     }
 
-    /// Factorises `K` plus `blocks` as the current factor, in the oldest
-    /// kept factor's storage when all are kept (dropped if this fails).
-    fn refactor(&mut self, x: &Xfem, blocks: &[ElementBlock]) -> Result<(), SolveError> {
+    /// Assembles `K` plus `blocks` as the current factor, in the oldest
+    /// kept factor's storage when all are kept (dropped if this fails); its
+    /// factorisation is left to [`factorise_slice`](Self::factorise_slice).
+    fn reassemble(&mut self, x: &Xfem, blocks: &[ElementBlock]) -> Result<(), SolveError> {
         let oldest = (self.factors.len() >= KEPT_FACTORS)
             .then(|| self.factors.pop())
             .flatten();
-        let factor = match oldest {
-            Some(old) => old.refactor(x, blocks)?,
-            None => Factor::new(x, blocks)?,
+        let factor = if let Some(old) = oldest {
+            old.reassemble(x, blocks)?
+        } else {
+            let pattern = x.pattern()?;
+            let updates = self
+                .factors
+                .iter()
+                .find(|f| f.is_on(pattern))
+                .and_then(|f| f.updates().cloned());
+            Factor::assembled(x, blocks, updates)?
         };
         self.factors.insert(0, factor);
         Ok(())
+    }
+
+    /// Factorises `K` plus `blocks` as the current factor, all at once.
+    fn refactor(&mut self, x: &Xfem, blocks: &[ElementBlock]) -> Result<(), SolveError> {
+        self.reassemble(x, blocks)?;
+        while !self.factorise_slice(f64::INFINITY)? {}
+        Ok(())
+    }
+
+    /// Factorises about `flops` more of the current factor: whether it is
+    /// complete.
+    fn factorise_slice(&mut self, flops: f64) -> Result<bool, SolveError> {
+        match self.factors.first_mut() {
+            Some(factor) => factor.factorise_slice(flops).inspect_err(|_| {
+                self.factors.remove(0);
+            }),
+            None => Ok(true),
+        }
     }
 
     /// The residual a solve through the current factor's correction must
@@ -255,7 +283,7 @@ impl LinearSolver for DirectSolver {
             } else if let Some(i) = self.corrected(x, blocks) {
                 self.factors[..=i].rotate_right(1);
             } else {
-                self.refactor(x, blocks)?;
+                self.reassemble(x, blocks)?;
                 self.factorised_at_start = true;
             }
         }
@@ -279,6 +307,11 @@ impl LinearSolver for DirectSolver {
             return Ok(self.status);
         }
         let clock = Instant::now();
+        if !self.factorise_slice(FACTOR_SLICE_FLOPS)? {
+            // the factorisation goes on in the next call
+            self.setup_seconds += clock.elapsed().as_secs_f64();
+            return Ok(self.status);
+        }
         let mut solved = self.refined();
         let tolerance = self.corrected_tolerance();
         let missed = match &solved {

@@ -19,6 +19,7 @@ pub mod low_rank;
 pub mod multigrid;
 pub mod pcg;
 pub mod relaxation;
+pub mod supernodal;
 
 pub use choice::{kind_name, make_solver};
 pub use linear::{DirectSolver, LinearInfo, LinearSolver};

@@ -34,6 +34,11 @@ impl FrameStats {
         self.frames.back().map_or(0.0, |f| f.0)
     }
 
+    /// CPU time of the last frame besides the solver's, s.
+    pub fn last_besides_solver(&self) -> f64 {
+        self.frames.back().map_or(0.0, |f| (f.0 - f.1).max(0.0))
+    }
+
     pub fn mean(&self) -> f64 {
         if self.frames.is_empty() {
             return 0.0;

@@ -23,6 +23,8 @@ pub struct WebApp {
     /// What was last logged, to log only changes.
     logged_solve: Option<f64>,
     logged_growth_steps: usize,
+    /// A job (solve, growth, race, study) ran at the last frame.
+    job_was_running: bool,
     next_report: Instant,
     /// The page asked for test hooks (`?cdca_test`): the widgets and the
     /// app's state are published on `window` each frame.
@@ -53,6 +55,7 @@ impl WebApp {
             app,
             logged_solve: None,
             logged_growth_steps: 0,
+            job_was_running: false,
             next_report: Instant::now() + REPORT_EVERY,
             test_hooks,
         }
@@ -125,8 +128,16 @@ impl WebApp {
                 stats.last() * 1e3
             );
         }
+        // a job's frames are counted from its start, and reported at its end
+        let running = self.app.running_job().is_some();
+        let ended = self.job_was_running && !running;
+        if running && !self.job_was_running {
+            self.app.frame_stats.clear();
+        }
+        self.job_was_running = running;
+        let stats = self.app.frame_stats();
         let now = Instant::now();
-        if now >= self.next_report && !stats.is_empty() {
+        if (now >= self.next_report || ended) && !stats.is_empty() {
             self.next_report = now + REPORT_EVERY;
             log::info!(
                 "timing: frames {} mean {:.1} ms p95 {:.1} ms max {:.1} ms, solver {:.1} ms/frame, interval {:.1} ms",

@@ -76,35 +76,29 @@ impl Pattern {
             dofs: n,
             detail: format!("{e:?}"),
         };
-        let elements = || starts.windows(2).map(|w| &dofs[w[0]..w[1]]);
-        let (cp, ri) = compressed_columns(n, |push| {
-            for el in elements() {
-                for &dj in el.iter().filter(|&&d| d != FIXED) {
-                    for &di in el.iter().filter(|&&d| d != FIXED && d >= dj) {
-                        push(di as usize, dj as usize);
-                    }
-                }
-            }
-        });
-        if u32::try_from(ri.len()).is_err() {
+        let mut map_starts = Vec::with_capacity(starts.len());
+        map_starts.push(0);
+        for w in starts.windows(2) {
+            let len = w[1] - w[0];
+            map_starts.push(map_starts[map_starts.len() - 1] + len * len);
+        }
+        let entries = map_starts[map_starts.len() - 1];
+        if u32::try_from(entries).is_err() || u32::try_from(n).is_err() {
             return Err(SolveError::NotPositiveDefinite {
                 dofs: n,
-                detail: format!("{} stiffness entries: too many to index", ri.len()),
+                detail: format!("{entries} element matrix entries: too many to index"),
             });
         }
-        let (cp, ri) = (cp.as_slice(), ri.as_slice());
         let mut inv = vec![0; n];
         for (i, &d) in perm.iter().enumerate() {
             inv[d] = i;
         }
-        // the reordered matrix: its upper triangle (unsorted) for the
-        // symbolic analysis, and the transpose, its lower triangle (sorted),
-        // for the factorisations
-        let (upper_ptr, upper_rows) = regroup(n, cp, ri, |r, c| {
-            let (a, b) = (inv[r], inv[c]);
-            (a.min(b), a.max(b))
-        });
-        let (lower_ptr, lower_rows) = regroup(n, &upper_ptr, &upper_rows, |r, c| (c, r));
+        // the reordered matrix: its lower triangle (sorted) for the
+        // factorisations, with every element entry's position in it, and
+        // the transpose, its upper triangle, for the symbolic analysis
+        let mut map = vec![SKIP; entries];
+        let (lower_ptr, lower_rows) = lower_triangle(n, dofs, starts, &inv, &mut map);
+        let (upper_ptr, upper_rows) = regroup(n, &lower_ptr, &lower_rows, |r, c| (c, r));
         let upper =
             SymbolicSparseColMatRef::new_unsorted_checked(n, n, &upper_ptr, None, &upper_rows);
         let lower = SymbolicSparseColMat::new_checked(n, n, lower_ptr, None, lower_rows);
@@ -114,27 +108,6 @@ impl Pattern {
         let symbolic =
             factorize_symbolic_cholesky(upper, Side::Upper, SymmetricOrdering::Identity, params)
                 .map_err(not_pd)?;
-        let (cp, ri) = (lower.col_ptr(), lower.row_idx());
-        let mut map = Vec::with_capacity(elements().map(|el| el.len() * el.len()).sum());
-        let mut map_starts = Vec::with_capacity(starts.len());
-        map_starts.push(0);
-        for el in elements() {
-            for &dj in el {
-                for &di in el {
-                    if di == FIXED || dj == FIXED || di < dj {
-                        map.push(SKIP);
-                        continue;
-                    }
-                    let (a, b) = (inv[di as usize], inv[dj as usize]);
-                    let (r, c) = (a.max(b), a.min(b));
-                    let Ok(k) = ri[cp[c]..cp[c + 1]].binary_search(&r) else {
-                        unreachable!("the pattern holds every pair it was built from")
-                    };
-                    map.push((cp[c] + k) as u32);
-                }
-            }
-            map_starts.push(map.len());
-        }
         Ok(Self {
             ordered: Arc::new(Ordered {
                 perm,
@@ -177,41 +150,75 @@ impl Pattern {
     }
 }
 
-/// Compressed columns (pointers, sorted distinct row indices) of an `n × n`
-/// pattern from the `(row, column)` pairs `pairs` gives (it is called
-/// twice, and must give the same pairs; repeats are merged).
-fn compressed_columns(
+/// Calls `f(row, column, k)` for every assembled entry of the elements'
+/// matrices (element `e`'s DOFs `dofs[starts[e]..starts[e + 1]]`, its
+/// entries `(i, j)` with both free and `dofs[i] ≥ dofs[j]`), at its
+/// position in the lower triangle of the matrix reordered by `inv`, `k`
+/// counting the entries of the element matrices one after the other
+/// (column-major, assembled or not).
+fn each_entry(
+    dofs: &[u32],
+    starts: &[usize],
+    inv: &[usize],
+    mut f: impl FnMut(usize, usize, usize),
+) {
+    let mut k = 0;
+    for w in starts.windows(2) {
+        let el = &dofs[w[0]..w[1]];
+        for &dj in el {
+            for &di in el {
+                if di != FIXED && dj != FIXED && di >= dj {
+                    let (a, b) = (inv[di as usize], inv[dj as usize]);
+                    f(a.max(b), a.min(b), k);
+                }
+                k += 1;
+            }
+        }
+    }
+}
+
+/// Compressed columns (pointers, sorted distinct row indices) of the lower
+/// triangle of the elements' matrix reordered by `inv` (elements as in
+/// [`each_entry`]), and the position of each assembled element entry in
+/// its row indices, set in `map` (indexed as `each_entry` counts; fewer
+/// than 2³² entries and DOFs).
+fn lower_triangle(
     n: usize,
-    pairs: impl Fn(&mut dyn FnMut(usize, usize)),
+    dofs: &[u32],
+    starts: &[usize],
+    inv: &[usize],
+    map: &mut [u32],
 ) -> (Vec<usize>, Vec<usize>) {
     let mut bounds = vec![0; n + 1];
-    pairs(&mut |_, c| bounds[c + 1] += 1);
+    each_entry(dofs, starts, inv, |_, c, _| bounds[c + 1] += 1);
     for c in 0..n {
         bounds[c + 1] += bounds[c];
     }
+    // per column, each entry's row (high half) and index (low half)
     let mut next = bounds[..n].to_vec();
-    let mut rows = vec![0; bounds[n]];
-    pairs(&mut |r, c| {
-        rows[next[c]] = r;
+    let mut entries = vec![0_u64; bounds[n]];
+    each_entry(dofs, starts, inv, |r, c, k| {
+        entries[next[c]] = ((r as u64) << 32) | k as u64;
         next[c] += 1;
     });
     let mut col_ptr = vec![0; n + 1];
-    let mut len = 0;
+    let mut rows = Vec::with_capacity(bounds[n]);
     for c in 0..n {
-        rows[bounds[c]..bounds[c + 1]].sort_unstable();
+        let column = &mut entries[bounds[c]..bounds[c + 1]];
+        column.sort_unstable();
         let mut last = usize::MAX;
-        for k in bounds[c]..bounds[c + 1] {
-            // len ≤ k: compacting never overwrites what is still to be read
-            let r = rows[k];
+        for &e in column.iter() {
+            let r = (e >> 32) as usize;
             if r != last {
-                rows[len] = r;
-                len += 1;
+                rows.push(r);
                 last = r;
             }
+            map[(e & u64::from(u32::MAX)) as usize] = (rows.len() - 1) as u32;
         }
-        col_ptr[c + 1] = len;
+        col_ptr[c + 1] = rows.len();
     }
-    rows.truncate(len);
+    // (the repeats' room freed: the pattern is kept)
+    rows.shrink_to_fit();
     (col_ptr, rows)
 }
 
@@ -244,4 +251,56 @@ fn regroup(
         }
     }
     (ptr, rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Element matrices added through the scatter maps give the reordered
+    /// lower triangle of the matrix assembled densely, on elements that
+    /// share DOFs, list them out of order and hold constrained ones; the
+    /// pattern's rows are sorted and distinct.
+    #[test]
+    fn scatter_maps_assemble_the_reordered_lower_triangle() {
+        let n = 7;
+        let dofs = [0, 3, FIXED, 5, 2, 3, 6, 1, FIXED, 4, 5, 0, 6];
+        let starts = [0, 4, 8, 13];
+        let perm = vec![4, 0, 6, 2, 5, 1, 3];
+        let p = Pattern::new(n, &dofs, &starts, perm.clone()).expect("a pattern");
+        let lower = &p.ordered().lower;
+        let mut vals = vec![0.0; lower.row_idx().len()];
+        let mut dense = vec![vec![0.0; n]; n];
+        for (e, w) in starts.windows(2).enumerate() {
+            let el = &dofs[w[0]..w[1]];
+            let m = el.len();
+            // symmetric, nonzero
+            let k: Vec<f64> = (0..m * m)
+                .map(|q| {
+                    let (i, j) = (q % m, q / m);
+                    (1 + 10 * e + i.max(j) * m + i.min(j)) as f64
+                })
+                .collect();
+            p.add(e, &k, &mut vals);
+            for (j, &dj) in el.iter().enumerate() {
+                for (i, &di) in el.iter().enumerate() {
+                    if di != FIXED && dj != FIXED {
+                        dense[di as usize][dj as usize] += k[j * m + i];
+                    }
+                }
+            }
+        }
+        let (cp, ri) = (lower.col_ptr(), lower.row_idx());
+        let mut seen = 0;
+        for c in 0..n {
+            let rows = &ri[cp[c]..cp[c + 1]];
+            assert!(rows.windows(2).all(|w| w[0] < w[1]), "column {c}: {rows:?}");
+            for (k, &r) in rows.iter().enumerate() {
+                assert!(r >= c, "lower triangle");
+                assert_eq!(vals[cp[c] + k], dense[perm[r]][perm[c]], "({r}, {c})");
+            }
+            seen += (c..n).filter(|&r| dense[perm[r]][perm[c]] != 0.0).count();
+        }
+        assert_eq!(seen, ri.len(), "every coupled pair, once");
+    }
 }

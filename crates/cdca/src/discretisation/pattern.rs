@@ -59,6 +59,51 @@ pub struct Pattern {
     map: Vec<u32>,
 }
 
+/// A [`Pattern`] before its symbolic factorisation
+/// ([`Pattern::structure`], then [`analyse`](Self::analyse)).
+#[derive(Clone, Debug)]
+pub struct Unanalysed {
+    perm: Vec<usize>,
+    inv: Vec<usize>,
+    lower: SymbolicSparseColMat<usize>,
+    dofs: Vec<u32>,
+    dof_starts: Vec<usize>,
+    starts: Vec<usize>,
+    map: Vec<u32>,
+}
+
+impl Unanalysed {
+    /// The second half of [`Pattern::new`]: the symbolic factorisation of
+    /// the lower triangle, from its transpose (faer's choice between
+    /// simplicial and supernodal, from the flops of this elimination).
+    pub fn analyse(self) -> Result<Pattern, SolveError> {
+        let n = self.perm.len();
+        let (upper_ptr, upper_rows) =
+            regroup(n, self.lower.col_ptr(), self.lower.row_idx(), |r, c| (c, r));
+        let upper =
+            SymbolicSparseColMatRef::new_unsorted_checked(n, n, &upper_ptr, None, &upper_rows);
+        let params = CholeskySymbolicParams::default();
+        let symbolic =
+            factorize_symbolic_cholesky(upper, Side::Upper, SymmetricOrdering::Identity, params)
+                .map_err(|e: FaerError| SolveError::NotPositiveDefinite {
+                    dofs: n,
+                    detail: format!("{e:?}"),
+                })?;
+        Ok(Pattern {
+            ordered: Arc::new(Ordered {
+                perm: self.perm,
+                inv: self.inv,
+                lower: self.lower,
+                symbolic,
+            }),
+            dofs: self.dofs,
+            dof_starts: self.dof_starts,
+            starts: self.starts,
+            map: self.map,
+        })
+    }
+}
+
 impl Pattern {
     /// The pattern of `n` free DOFs coupled element by element, in the
     /// fill-reducing order `perm` (`perm[i]`: the DOF at position `i`):
@@ -71,11 +116,20 @@ impl Pattern {
         starts: &[usize],
         perm: Vec<usize>,
     ) -> Result<Self, SolveError> {
+        Self::structure(n, dofs, starts, perm)?.analyse()
+    }
+
+    /// The first half of [`new`](Self::new): the reordered lower triangle
+    /// and the scatter maps, without the symbolic factorisation (about
+    /// two thirds of the time; the workbench makes each half in a call of
+    /// its own).
+    pub fn structure(
+        n: usize,
+        dofs: &[u32],
+        starts: &[usize],
+        perm: Vec<usize>,
+    ) -> Result<Unanalysed, SolveError> {
         assert_eq!(perm.len(), n, "an ordering of every DOF");
-        let not_pd = |e: FaerError| SolveError::NotPositiveDefinite {
-            dofs: n,
-            detail: format!("{e:?}"),
-        };
         let mut map_starts = Vec::with_capacity(starts.len());
         map_starts.push(0);
         for w in starts.windows(2) {
@@ -94,27 +148,13 @@ impl Pattern {
             inv[d] = i;
         }
         // the reordered matrix: its lower triangle (sorted) for the
-        // factorisations, with every element entry's position in it, and
-        // the transpose, its upper triangle, for the symbolic analysis
+        // factorisations, with every element entry's position in it
         let mut map = vec![SKIP; entries];
         let (lower_ptr, lower_rows) = lower_triangle(n, dofs, starts, &inv, &mut map);
-        let (upper_ptr, upper_rows) = regroup(n, &lower_ptr, &lower_rows, |r, c| (c, r));
-        let upper =
-            SymbolicSparseColMatRef::new_unsorted_checked(n, n, &upper_ptr, None, &upper_rows);
-        let lower = SymbolicSparseColMat::new_checked(n, n, lower_ptr, None, lower_rows);
-        // faer's choice between simplicial and supernodal, from the flops
-        // of this elimination
-        let params = CholeskySymbolicParams::default();
-        let symbolic =
-            factorize_symbolic_cholesky(upper, Side::Upper, SymmetricOrdering::Identity, params)
-                .map_err(not_pd)?;
-        Ok(Self {
-            ordered: Arc::new(Ordered {
-                perm,
-                inv,
-                lower,
-                symbolic,
-            }),
+        Ok(Unanalysed {
+            perm,
+            inv,
+            lower: SymbolicSparseColMat::new_checked(n, n, lower_ptr, None, lower_rows),
             dofs: dofs.to_vec(),
             dof_starts: starts.to_vec(),
             starts: map_starts,

@@ -56,10 +56,10 @@ impl Simulation {
     /// Each call does one of:
     /// - integrate [`INTEGRATION_CHUNK`] quadrature points of the elements
     ///   the last extension changed;
-    /// - for the direct solver, the stiffness pattern and its symbolic
-    ///   factorisation (once per rebuild);
+    /// - for the direct solver, the stiffness pattern, then its symbolic
+    ///   factorisation (a call each, once per rebuild);
     /// - at most `max_iterations` sweeps of the step's solve, with at most
-    ///   one setup (factorisation, cells or hierarchy; see
+    ///   one setup (a slice of a factorisation, cells or hierarchy; see
     ///   [`relax`](Self::relax));
     /// - under critical control, the next trial, or λ_cr restored once the
     ///   search has ended ([`at_critical_load`](Self::at_critical_load));
@@ -129,7 +129,7 @@ impl Simulation {
     /// One chunk of what a rebuild after growth, or a new simulation, left
     /// to do (see [`rebuild`](Self::rebuild)): the stiffness of
     /// [`INTEGRATION_CHUNK`] quadrature points of the changed elements, or, for the direct solver,
-    /// the stiffness pattern and its symbolic factorisation, or one free
+    /// the stiffness pattern or its symbolic factorisation, or one free
     /// tip's interaction-integral domain (read after every solve on this
     /// discretisation: made here, a slice each, not all in the slice that
     /// ends the first solve). Returns whether nothing is left, i.e.
@@ -141,7 +141,7 @@ impl Simulation {
             return Ok(false);
         }
         if self.model.scene.solver.kind == SolverKind::Direct && !x.has_pattern() {
-            x.pattern()?;
+            x.prepare_pattern()?;
             return Ok(false);
         }
         let x = &self.scratch.xfem;

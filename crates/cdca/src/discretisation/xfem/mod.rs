@@ -19,7 +19,7 @@ use nalgebra::{DMatrix, SMatrix};
 use crate::discretisation::dofs::{DofMap, FIXED};
 use crate::discretisation::enrichment::EnrichmentFunctions;
 use crate::discretisation::material::Elastic;
-use crate::discretisation::pattern::Pattern;
+use crate::discretisation::pattern::{Pattern, Unanalysed};
 use crate::discretisation::xfem::classify::{classify_nodes, element_segments, element_tips};
 use crate::discretisation::xfem::element::{
     Previous, STIFFNESS_BATCH, add_stiffness, build_elements, eval_scalars, regular_stiffness,
@@ -71,6 +71,9 @@ pub struct Xfem {
     /// The previous discretisation's pattern, taken by
     /// [`pattern`](Self::pattern) where it [fits](Pattern::fits).
     offered: RefCell<Option<Pattern>>,
+    /// The pattern's first half, made by
+    /// [`prepare_pattern`](Self::prepare_pattern).
+    structure: RefCell<Option<Unanalysed>>,
     /// Slots of enriched elements whose stiffness is still to be integrated
     /// (see [`build`](Self::build)); empty once usable.
     unintegrated: Vec<u32>,
@@ -112,6 +115,7 @@ impl Xfem {
             faces: Vec::new(),
             pattern: OnceCell::new(),
             offered: RefCell::new(None),
+            structure: RefCell::new(None),
             unintegrated: Vec::new(),
             integrated_points: 0,
         };
@@ -352,6 +356,41 @@ impl Xfem {
         if let Some(p) = self.pattern.get() {
             return Ok(p);
         }
+        let structure = self.structure.borrow_mut().take();
+        let p = match structure {
+            Some(u) => u.analyse()?,
+            None => match self.kept_or_structure()? {
+                Ok(p) => p,
+                Err(u) => u.analyse()?,
+            },
+        };
+        Ok(self.pattern.get_or_init(|| p))
+    }
+
+    /// Half of [`pattern`](Self::pattern) per call, for a frame that
+    /// should hold only one (the structure, then its symbolic
+    /// factorisation; or the offered pattern, which needs neither):
+    /// whether the pattern is ready.
+    pub fn prepare_pattern(&self) -> Result<bool, SolveError> {
+        if self.pattern.get().is_some() || self.structure.borrow().is_some() {
+            self.pattern()?;
+            return Ok(true);
+        }
+        match self.kept_or_structure()? {
+            Ok(p) => {
+                self.pattern.get_or_init(|| p);
+                Ok(true)
+            }
+            Err(u) => {
+                *self.structure.borrow_mut() = Some(u);
+                Ok(false)
+            }
+        }
+    }
+
+    /// The offered pattern where it fits, or else the first half of a new
+    /// one ([`Pattern::structure`]).
+    fn kept_or_structure(&self) -> Result<Result<Pattern, Unanalysed>, SolveError> {
         let n_elements = self.mesh.element_count();
         let mut dofs = Vec::with_capacity(8 * n_elements);
         let mut starts = Vec::with_capacity(n_elements + 1);
@@ -373,11 +412,10 @@ impl Xfem {
             .flat_map(|node| self.dofs.node_free(node).map(|d| d as usize))
             .collect();
         let offered = self.offered.borrow_mut().take();
-        let p = match offered {
-            Some(p) if p.fits(&dofs, &starts, &perm) => p,
-            _ => Pattern::new(self.n_free(), &dofs, &starts, perm)?,
-        };
-        Ok(self.pattern.get_or_init(|| p))
+        Ok(match offered {
+            Some(p) if p.fits(&dofs, &starts, &perm) => Ok(p),
+            _ => Err(Pattern::structure(self.n_free(), &dofs, &starts, perm)?),
+        })
     }
 
     /// The pattern, if computed, taken out (to be

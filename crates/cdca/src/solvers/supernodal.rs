@@ -139,6 +139,7 @@ pub fn factorise(
     ));
     let mut local = vec![usize::MAX; symbolic.nrows()];
     let mut product = Vec::new();
+    let mut targets = Vec::new();
     for s in range {
         let (s_start, s_end) = (begin[s], end[s]);
         let s_pattern = symbolic.supernode(s).pattern();
@@ -172,10 +173,14 @@ pub fn factorise(
             let rows = d_pattern.len() - first;
             let below = ld.subrows(d_width + first, rows);
             let top = below.subrows(0, mid);
-            subtract_update(&mut product, ls.as_mut(), below, top, par, |i| {
-                let row = d_pattern[first + i];
-                if i < mid { row - s_start } else { local[row] }
-            });
+            targets.clear();
+            targets.extend(
+                d_pattern[first..]
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &row)| if i < mid { row - s_start } else { local[row] }),
+            );
+            subtract_update(&mut product, ls.as_mut(), below, top, par, &targets);
         }
         let (mut diagonal, mut off) = ls.split_at_row_mut(width);
         cholesky_in_place(
@@ -198,7 +203,7 @@ pub fn factorise(
     Ok(())
 }
 
-/// `ls[rows(i), rows(j)] −= (below topᵀ)[i, j]` on and below the diagonal
+/// `ls[rows[i], rows[j]] −= (below topᵀ)[i, j]` on and below the diagonal
 /// (`top`: the first `top.nrows()` rows of `below`), through the scratch
 /// `product`, as faer's generic path does it: the square top part as a
 /// lower-triangular product, the rest as a rectangular one.
@@ -208,7 +213,7 @@ fn subtract_update(
     below: MatRef<'_, f64>,
     top: MatRef<'_, f64>,
     par: Par,
-    rows: impl Fn(usize) -> usize,
+    rows: &[usize],
 ) {
     let (m, n) = (below.nrows(), top.nrows());
     if m == 0 || n == 0 {
@@ -242,10 +247,16 @@ fn subtract_update(
             par,
         );
     }
+    let products = &product[..m * n];
     for j in 0..n {
-        let col = rows(j);
-        for i in j..m {
-            ls[(rows(i), col)] += out[(i, j)];
+        let target = ls
+            .as_mut()
+            .col_mut(rows[j])
+            .try_as_col_major_mut()
+            .expect("a supernode's block is column-major")
+            .as_slice_mut();
+        for (&r, &p) in rows[j..].iter().zip(&products[j * m + j..(j + 1) * m]) {
+            target[r] += p;
         }
     }
 }

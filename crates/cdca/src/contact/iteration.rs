@@ -221,7 +221,7 @@ impl ContactSolve {
         }
         let Some(system) = &mut self.system else {
             self.set_up(x, committed, factored, u, solver)?;
-            if solver.factorised_at_start() {
+            if solver.factorising() {
                 // a factorisation runs in calls of its own (frame slices in
                 // the workbench): the solve follows it
                 return Ok(self.waiting());
@@ -245,11 +245,11 @@ impl ContactSolve {
                 }),
         );
         system.copied = samples.len();
-        if !status.finished && status.iterations == 0 {
-            // the linear solver is still setting up (a factorisation)
-            return Ok(self.waiting());
-        }
         if !status.finished {
+            if status.iterations == 0 {
+                // the linear solver is still setting up (a factorisation)
+                return Ok(self.waiting());
+            }
             return Ok(RelaxStatus {
                 iterations: self.done_iterations + status.iterations,
                 residual: status.residual,

@@ -49,7 +49,7 @@ pub struct Ordered {
 pub struct Pattern {
     ordered: Arc<Ordered>,
     /// The element DOF lists it was built from (`dofs`, `starts` of
-    /// [`new`](Self::new)), for [`fits`](Self::fits).
+    /// [`structure`](Self::structure)), for [`fits`](Self::fits).
     dofs: Vec<u32>,
     dof_starts: Vec<usize>,
     /// Start of each element's map in `map`, and the end of the last.
@@ -73,7 +73,7 @@ pub struct Unanalysed {
 }
 
 impl Unanalysed {
-    /// The second half of [`Pattern::new`]: the symbolic factorisation of
+    /// The second half of [`Pattern::structure`]: the symbolic factorisation of
     /// the lower triangle, from its transpose (faer's choice between
     /// simplicial and supernodal, from the flops of this elimination).
     pub fn analyse(self) -> Result<Pattern, SolveError> {
@@ -109,20 +109,10 @@ impl Pattern {
     /// fill-reducing order `perm` (`perm[i]`: the DOF at position `i`):
     /// element `e`'s DOFs are `dofs[starts[e]..starts[e + 1]]` ([`FIXED`]
     /// entries are skipped), and [`add`](Self::add) takes the elements by
-    /// the same index.
-    pub fn new(
-        n: usize,
-        dofs: &[u32],
-        starts: &[usize],
-        perm: Vec<usize>,
-    ) -> Result<Self, SolveError> {
-        Self::structure(n, dofs, starts, perm)?.analyse()
-    }
-
-    /// The first half of [`new`](Self::new): the reordered lower triangle
-    /// and the scatter maps, without the symbolic factorisation (about
-    /// two thirds of the time; the workbench makes each half in a call of
-    /// its own).
+    /// the same index. This is its first half, the reordered lower
+    /// triangle and the scatter maps (about two thirds of the time);
+    /// [`Unanalysed::analyse`] adds the symbolic factorisation (the
+    /// workbench makes each half in a call of its own).
     pub fn structure(
         n: usize,
         dofs: &[u32],
@@ -162,7 +152,7 @@ impl Pattern {
         })
     }
 
-    /// Whether this is the pattern [`new`](Self::new) would make of the
+    /// Whether this is the pattern [`structure`](Self::structure) would make of the
     /// same arguments: another discretisation whose elements couple the
     /// same DOFs in the same order (a crack moved within the elements it
     /// cuts and enriches) shares it.
@@ -307,7 +297,9 @@ mod tests {
         let dofs = [0, 3, FIXED, 5, 2, 3, 6, 1, FIXED, 4, 5, 0, 6];
         let starts = [0, 4, 8, 13];
         let perm = vec![4, 0, 6, 2, 5, 1, 3];
-        let p = Pattern::new(n, &dofs, &starts, perm.clone()).expect("a pattern");
+        let p = Pattern::structure(n, &dofs, &starts, perm.clone())
+            .and_then(Unanalysed::analyse)
+            .expect("a pattern");
         let lower = &p.ordered().lower;
         let mut vals = vec![0.0; lower.row_idx().len()];
         let mut dense = vec![vec![0.0; n]; n];

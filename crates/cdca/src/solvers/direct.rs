@@ -62,11 +62,6 @@ impl Factor {
         Self::assembled(x, extra, None)?.factorised()
     }
 
-    /// [`Factor::new`] in this factor's storage.
-    pub fn refactor(self, x: &Xfem, extra: &[ElementBlock]) -> Result<Self, SolveError> {
-        self.reassemble(x, extra)?.factorised()
-    }
-
     /// `K` (bulk plus `extra` blocks) assembled, not yet factorised (see
     /// [`factorise_slice`](Self::factorise_slice)); `updates` are those of
     /// another factor on the same pattern, if any.
@@ -275,6 +270,7 @@ impl Factor {
     }
 
     fn triangular(&self, y: &mut [f64], r: usize, lower: bool) {
+        debug_assert!(self.is_factorised(), "a factor solves once factorised");
         let o = &*self.ordered;
         let n = o.perm.len();
         let par = get_global_parallelism();
@@ -305,7 +301,13 @@ impl Factor {
     /// reach, or, with a simplicial factor, on every row.
     fn forward_columns(&self, b: &[SparseColumn]) -> Reached {
         match self.ordered.symbolic.raw() {
-            SymbolicCholeskyRaw::Supernodal(symbolic) => Reached::forward(symbolic, &self.l, b),
+            SymbolicCholeskyRaw::Supernodal(symbolic) => {
+                let updates = self
+                    .updates
+                    .as_ref()
+                    .expect("a factorised supernodal factor");
+                Reached::forward(symbolic, updates.owner(), &self.l, b)
+            }
             SymbolicCholeskyRaw::Simplicial(_) => {
                 let n = self.ordered.perm.len();
                 let mut values = vec![0.0; n * b.len()];

@@ -32,18 +32,16 @@ pub struct Reached {
 
 impl Reached {
     /// `L⁻¹ B` on the rows reached from the columns `b` of `B`, with the
-    /// factor `symbolic`, whose values are `l`.
+    /// factor `symbolic`, whose values are `l` (`owner[p]`: the supernode
+    /// holding row `p`, [`Updates::owner`](crate::solvers::supernodal::Updates::owner)).
     pub fn forward(
         symbolic: &SymbolicSupernodalCholesky<usize>,
+        owner: &[usize],
         l: &[f64],
         b: &[SparseColumn],
     ) -> Self {
         let ns = symbolic.n_supernodes();
         let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
-        let mut owner = vec![0usize; symbolic.nrows()];
-        for s in 0..ns {
-            owner[begin[s]..end[s]].fill(s);
-        }
         // supernodes holding a nonzero, then their ancestors (a parent's
         // index is larger than its child's: one ascending pass)
         let mut active = vec![false; ns];

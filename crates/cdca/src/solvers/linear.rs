@@ -64,11 +64,11 @@ pub trait LinearSolver {
     /// The started solve so far.
     fn info(&self) -> LinearInfo;
 
-    /// The last [`start`](Self::start) set a factorisation up: it runs in
-    /// the next [`run`](Self::run) calls, a slice of about
+    /// The started solve has a factorisation to make first: it runs in the
+    /// next [`run`](Self::run) calls, a slice of about
     /// [`FACTOR_SLICE_FLOPS`] each (the workbench gives each a frame slice
     /// of its own), before the solve.
-    fn factorised_at_start(&self) -> bool {
+    fn factorising(&self) -> bool {
         false
     }
 
@@ -151,8 +151,6 @@ pub struct DirectSolver {
     samples: Vec<ResidualSample>,
     /// Setup time of the started solve, s.
     setup_seconds: f64,
-    /// The started solve's setup factorised (no kept factor served).
-    factorised_at_start: bool,
 }
 
 impl DirectSolver {
@@ -271,7 +269,6 @@ impl LinearSolver for DirectSolver {
         matrix_changed: bool,
     ) -> Result<(), SolveError> {
         let clock = Instant::now();
-        self.factorised_at_start = false;
         if matrix_changed || self.factors.is_empty() {
             let pattern = x.pattern()?;
             if let Some(i) = self
@@ -284,7 +281,6 @@ impl LinearSolver for DirectSolver {
                 self.factors[..=i].rotate_right(1);
             } else {
                 self.reassemble(x, blocks)?;
-                self.factorised_at_start = true;
             }
         }
         self.f.clear();
@@ -356,8 +352,8 @@ impl LinearSolver for DirectSolver {
         }
     }
 
-    fn factorised_at_start(&self) -> bool {
-        self.factorised_at_start
+    fn factorising(&self) -> bool {
+        self.factors.first().is_some_and(|f| !f.is_factorised())
     }
 
     fn coupling(&self, rows: &[SparseColumn], cols: &[SparseColumn]) -> Option<DMatrix<f64>> {

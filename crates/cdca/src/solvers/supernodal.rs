@@ -41,6 +41,8 @@ pub struct Updates {
     descendants: Vec<usize>,
     /// `flops[s]`: the floating-point operations of supernodes `0..s`.
     flops: Vec<f64>,
+    /// `owner[p]`: the supernode holding row `p`.
+    owner: Vec<usize>,
 }
 
 impl Updates {
@@ -90,7 +92,13 @@ impl Updates {
             start,
             descendants,
             flops,
+            owner,
         }
+    }
+
+    /// The supernode holding each row.
+    pub fn owner(&self) -> &[usize] {
+        &self.owner
     }
 
     /// The number of supernodes.

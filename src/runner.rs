@@ -323,13 +323,9 @@ impl Runner {
         let Ok(scene) = self.checked.clone() else {
             return Ok(false);
         };
-        let old = match self.sim.take() {
-            Some(mut sim) => {
-                sim.release_solver();
-                Some(sim)
-            }
-            None => self.spare.take(),
-        };
+        // its factor goes on as the storage of the new one's first
+        // factorisation (redone only where the values changed)
+        let old = self.sim.take().or_else(|| self.spare.take());
         self.build(old, scene)?;
         self.stale = false;
         self.relaxation_started = false;

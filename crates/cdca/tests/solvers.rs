@@ -347,6 +347,75 @@ fn nested_dissection_leaves_less_fill_than_amd() {
     assert!((nd as f64) < 0.95 * amd as f64, "{nd} against AMD's {amd}");
 }
 
+/// A factor refactorised on its own pattern after a change of a few
+/// element blocks (contact at one crack's faces, or a crack moved within
+/// its elements, as the workbench's drag does) redoes only the supernodes
+/// of the changed columns and their ancestors, and is the factor made
+/// anew, bit for bit: the same solution to the last bit, in slices or at
+/// once. A plate with two cracks at odd angles, 56 × 56.
+#[test]
+fn a_factor_redone_where_the_values_changed_is_the_factor_made_anew() {
+    use cdca::discretisation::assembly::ElementBlock;
+    use cdca::discretisation::loads::traction_forces;
+    use cdca::solvers::direct::Factor;
+    let scene = closed_scene(56, None)
+        .edit(|file| {
+            let mut second = file.cracks[0].clone();
+            second.points = Some(vec![[0.061, 0.213], [0.1347, 0.2391], [0.1882, 0.2274]]);
+            file.cracks.push(second);
+        })
+        .expect("scene");
+    let model = Model::new(scene);
+    let x = model.discretise(model.initial_cracks());
+    let f = traction_forces(&x, &model.scene.boundary);
+    // a penalty-like block on a few enriched elements of the second crack
+    let block = |slot: usize, k: f64| {
+        let n = 2 * x.enriched[slot].scalars.len();
+        ElementBlock {
+            slot,
+            k: nalgebra::DMatrix::identity(n, n) * k,
+        }
+    };
+    let last = x.enriched.len() - 1;
+    let before = [block(last, 1e9), block(last - 3, 2e9)];
+    let after = [block(last, 3e9), block(last - 5, 2e9)];
+    let anew = Factor::new(&x, &after).expect("factor");
+    let all = anew.supernodes_to_factorise();
+    let reference = anew.solve(&f).expect("solve");
+    for slices in [1.0, 7.0] {
+        let mut old = Factor::new(&x, &before).expect("factor");
+        assert!(
+            old.solve(&f).expect("solve") != reference,
+            "the blocks matter"
+        );
+        old = old.reassemble(&x, &after).expect("reassembled");
+        let redone = old.supernodes_to_factorise();
+        let updates = old.updates().expect("a supernodal factor").clone();
+        while !old
+            .factorise_slice(updates.total_flops() / slices)
+            .expect("slice")
+        {}
+        println!("{redone} of {all} supernodes redone ({slices} slices)");
+        assert!(
+            redone < all / 2,
+            "{redone} of {all} supernodes redone for three changed elements"
+        );
+        let u = old.solve(&f).expect("solve");
+        assert!(
+            u == reference,
+            "redone in {slices} slices: not the factor anew"
+        );
+    }
+    // the same values: nothing to redo
+    let same = Factor::new(&x, &after)
+        .expect("factor")
+        .reassemble(&x, &after)
+        .expect("reassembled");
+    assert_eq!(same.supernodes_to_factorise(), 0);
+    assert!(same.is_factorised(), "nothing left to factorise");
+    assert!(same.solve(&f).expect("solve") == reference);
+}
+
 /// A factorisation spread over slices of supernodes (as the workbench
 /// spreads it over frames) is the factorisation done at once, bit for bit,
 /// whatever the slices; and it solves the system to round-off (true

@@ -290,10 +290,12 @@ impl Simulation {
         if !same_discretisation(&self.model.scene, &scene) {
             return self.with_cracks(scene);
         }
-        // the rest (solver and factor, state) is freed at the block's end
-        let (mut xfem, rebuild_points) = {
-            let old = self;
-            (old.scratch.xfem, old.scratch.rebuild_points)
+        // the current factor goes on as storage (see `adopt`); the rest
+        // (solver, state) is freed at the block's end
+        let (mut xfem, rebuild_points, factor) = {
+            let mut old = self;
+            let factor = old.scratch.solver.hand_over_factor();
+            (old.scratch.xfem, old.scratch.rebuild_points, factor)
         };
         let model = Model::new(scene);
         let cracks = model.initial_cracks();
@@ -304,7 +306,7 @@ impl Simulation {
             kept.kt = new.kt;
         }
         debug_assert!(xfem.funcs.cracks == cracks, "the same crack geometry");
-        Self::from_parts(model, cracks, xfem, rebuild_points)
+        Self::from_parts(model, cracks, xfem, rebuild_points).map(|s| s.adopt(factor))
     }
 
     /// [`with_scene`](Self::with_scene) for a scene whose cracks differ
@@ -313,10 +315,12 @@ impl Simulation {
         let model = Model::new(scene);
         let cracks = model.initial_cracks();
         sound(&model.scene, &cracks)?;
-        // the rest (solver and factor, state) is freed at the block's end
-        let mut previous = {
-            let old = self;
-            old.scratch.xfem
+        // the current factor goes on as storage (see `adopt`); the rest
+        // (solver, state) is freed at the block's end
+        let (mut previous, factor) = {
+            let mut old = self;
+            let factor = old.scratch.solver.hand_over_factor();
+            (old.scratch.xfem, factor)
         };
         let old = &previous.funcs.cracks;
         let redrawn = cracks
@@ -333,7 +337,20 @@ impl Simulation {
         xfem.offer_pattern(previous.take_pattern());
         drop(previous);
         let rebuild_points = xfem.points_to_integrate();
-        Self::from_parts(model, cracks, xfem, rebuild_points)
+        Self::from_parts(model, cracks, xfem, rebuild_points).map(|s| s.adopt(factor))
+    }
+
+    /// This simulation with its solver given `factor`, the factor of the
+    /// simulation it was built from, as storage for its first
+    /// factorisation: on a kept stiffness pattern (a crack moved within the
+    /// elements it enriches, a load or the faces' law edited) that redoes
+    /// only the supernodes whose values changed, bit for bit as a
+    /// factorisation anew (`Factor::reassemble`).
+    fn adopt(mut self, factor: Option<crate::solvers::direct::Factor>) -> Self {
+        if let Some(f) = factor {
+            self.scratch.solver.adopt_factor(f);
+        }
+        self
     }
 
     /// Drops the solver's factorisations and setup (a new solver of the

@@ -50,7 +50,11 @@ pub struct Factor {
     /// A supernodal factor's updates, shared by the factors of one
     /// pattern.
     updates: Option<Arc<Updates>>,
-    /// The next supernode to factorise, while the numeric factorisation is
+    /// The supernodes to factorise, ascending: all of them, or, when the
+    /// factor was refactorised on its own pattern, those whose values
+    /// change ([`Updates::changed`]).
+    todo: Vec<usize>,
+    /// The next of `todo` to factorise, while the numeric factorisation is
     /// under way ([`factorise_slice`](Self::factorise_slice)).
     pending: Option<usize>,
 }
@@ -79,18 +83,27 @@ impl Factor {
             correction: None,
             floor: 0.0,
             updates,
-            pending: None,
+            todo: Vec::new(),
+            // nothing factorised yet
+            pending: Some(0),
         };
         factor.reassemble(x, extra)
     }
 
-    /// [`Factor::assembled`] in this factor's storage.
+    /// [`Factor::assembled`] in this factor's storage. On the same
+    /// pattern, a factorised supernodal factor is refactorised only where
+    /// the values changed ([`Updates::changed`]): the supernodes of changed
+    /// columns and their ancestors. The factor is the same, to the last
+    /// bit, as one factorised anew.
     pub fn reassemble(mut self, x: &Xfem, extra: &[ElementBlock]) -> Result<Self, SolveError> {
         assert!(x.is_integrated(), "{NOT_INTEGRATED}");
         let pattern = x.pattern()?;
-        if !Arc::ptr_eq(&self.ordered, pattern.ordered()) {
+        let before = if Arc::ptr_eq(&self.ordered, pattern.ordered()) {
+            (self.is_factorised() && self.updates.is_some()).then(|| std::mem::take(&mut self.a))
+        } else {
             self.updates = None;
-        }
+            None
+        };
         self.ordered = Arc::clone(pattern.ordered());
         resize_spare(&mut self.a, self.ordered.lower.row_idx().len());
         self.a.fill(0.0);
@@ -113,9 +126,26 @@ impl Factor {
         self.regular = e;
         self.correction = None;
         self.floor = 0.0;
-        // zeroed by the factorisation
-        resize_spare(&mut self.l, self.ordered.symbolic.len_val());
-        self.pending = Some(0);
+        self.todo = match (self.ordered.symbolic.raw(), &self.updates, before) {
+            (SymbolicCholeskyRaw::Supernodal(symbolic), Some(updates), Some(before)) => {
+                updates.changed(symbolic, self.ordered.lower.col_ptr(), &before, &self.a)
+            }
+            (raw, _, _) => {
+                // zeroed by the factorisation
+                resize_spare(&mut self.l, self.ordered.symbolic.len_val());
+                match raw {
+                    SymbolicCholeskyRaw::Supernodal(symbolic) => {
+                        (0..symbolic.n_supernodes()).collect()
+                    }
+                    SymbolicCholeskyRaw::Simplicial(_) => Vec::new(),
+                }
+            }
+        };
+        let simplicial = matches!(
+            self.ordered.symbolic.raw(),
+            SymbolicCholeskyRaw::Simplicial(_)
+        );
+        self.pending = (simplicial || !self.todo.is_empty()).then_some(0);
         Ok(self)
     }
 
@@ -123,6 +153,12 @@ impl Factor {
     fn factorised(mut self) -> Result<Self, SolveError> {
         while !self.factorise_slice(f64::INFINITY)? {}
         Ok(self)
+    }
+
+    /// The supernodes the last (re)factorisation computes: all of them, or
+    /// on the factor's own pattern those whose values changed.
+    pub fn supernodes_to_factorise(&self) -> usize {
+        self.todo.len()
     }
 
     /// Whether the numeric factorisation is complete (only then does the
@@ -148,15 +184,28 @@ impl Factor {
             self.updates
                 .get_or_insert_with(|| Arc::new(Updates::new(symbolic))),
         );
-        let to = updates.slice_end(from, flops);
+        let to = updates.slice_end(&self.todo, from, flops);
         let a = SparseColMatRef::new(o.lower.as_ref(), &self.a);
-        supernodal::factorise(symbolic, &updates, a, &mut self.l, from..to).map_err(|column| {
-            not_positive_definite(
-                o.perm.len(),
-                &format!("non-positive pivot at column {column}"),
-            )
-        })?;
-        self.pending = (to < updates.len()).then_some(to);
+        // each run of consecutive supernodes in a call
+        let mut run = from;
+        while run < to {
+            let first = self.todo[run];
+            let end = run
+                + self.todo[run..to]
+                    .iter()
+                    .enumerate()
+                    .take_while(|&(i, &s)| s == first + i)
+                    .count();
+            supernodal::factorise(symbolic, &updates, a, &mut self.l, first..first + end - run)
+                .map_err(|column| {
+                    not_positive_definite(
+                        o.perm.len(),
+                        &format!("non-positive pivot at column {column}"),
+                    )
+                })?;
+            run = end;
+        }
+        self.pending = (to < self.todo.len()).then_some(to);
         Ok(self.pending.is_none())
     }
 

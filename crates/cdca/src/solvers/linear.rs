@@ -85,6 +85,18 @@ pub trait LinearSolver {
         None
     }
 
+    /// Hands over the current factor (a direct solver's), for
+    /// [`adopt_factor`](Self::adopt_factor) by the solver of a simulation
+    /// built from this one's discretisation.
+    fn hand_over_factor(&mut self) -> Option<Factor> {
+        None
+    }
+
+    /// Takes a factor of another simulation's matrix as storage for the
+    /// next factorisation, which on the same pattern redoes only the part
+    /// whose values changed (dropped by solvers that keep no factor).
+    fn adopt_factor(&mut self, _factor: Factor) {}
+
     /// The whole solve at once: [`start`](Self::start), then
     /// [`run`](Self::run) until it has finished; `u` is the starting guess
     /// and the result.
@@ -145,6 +157,12 @@ pub const CORRECTED_SLACK: f64 = 10.0;
 pub struct DirectSolver {
     /// The last factors, the current one first.
     factors: Vec<Factor>,
+    /// A factor handed over from another simulation
+    /// ([`LinearSolver::adopt_factor`]): storage for the next new factor,
+    /// and, on the same pattern, a refactorisation of its changed part
+    /// only ([`Factor::reassemble`]). It never solves: its matrix is not
+    /// this simulation's.
+    adopted: Option<Factor>,
     f: Vec<f64>,
     u: Vec<f64>,
     status: RelaxStatus,
@@ -180,7 +198,7 @@ impl DirectSolver {
         let oldest = (self.factors.len() >= KEPT_FACTORS)
             .then(|| self.factors.pop())
             .flatten();
-        let factor = if let Some(old) = oldest {
+        let factor = if let Some(old) = oldest.or_else(|| self.adopted.take()) {
             old.reassemble(x, blocks)?
         } else {
             let pattern = x.pattern()?;
@@ -258,6 +276,15 @@ impl DirectSolver {
 impl LinearSolver for DirectSolver {
     fn name(&self) -> &'static str {
         "direct"
+    }
+
+    fn hand_over_factor(&mut self) -> Option<Factor> {
+        self.factors.truncate(1);
+        self.factors.pop()
+    }
+
+    fn adopt_factor(&mut self, factor: Factor) {
+        self.adopted = Some(factor);
     }
 
     fn start(

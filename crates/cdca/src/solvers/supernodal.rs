@@ -116,12 +116,61 @@ impl Updates {
         self.flops.last().copied().unwrap_or(0.0)
     }
 
-    /// The end of the slice of supernodes that starts at `from` and costs
-    /// at most `flops` (at least one supernode, when any is left).
-    pub fn slice_end(&self, from: usize, flops: f64) -> usize {
-        let limit = self.flops[from] + flops;
-        let end = from + self.flops[from + 1..].partition_point(|&f| f <= limit);
-        end.max(from + 1).min(self.len())
+    /// The floating-point operations of supernode `s`.
+    pub fn cost(&self, s: usize) -> f64 {
+        self.flops[s + 1] - self.flops[s]
+    }
+
+    /// The end of the slice of `todo` (supernodes, ascending) that starts
+    /// at `todo[from]` and costs at most `flops` (at least one supernode,
+    /// when any is left).
+    pub fn slice_end(&self, todo: &[usize], from: usize, flops: f64) -> usize {
+        let mut spent = 0.0;
+        let mut end = from;
+        while end < todo.len() {
+            spent += self.cost(todo[end]);
+            if spent > flops && end > from {
+                break;
+            }
+            end += 1;
+        }
+        end
+    }
+
+    /// The supernodes whose values change when the values of `a` change
+    /// from `old` (both by the entries of `a`'s lower triangle, in the
+    /// symbolic factorisation's order), ascending: those holding a changed
+    /// column and their ancestors in the supernodal elimination tree (a
+    /// supernode's parent holds the first row of its off-diagonal
+    /// pattern). Every other supernode is the same, to the last bit, in a
+    /// factorisation of either.
+    pub fn changed(
+        &self,
+        symbolic: &SymbolicSupernodalCholesky<usize>,
+        col_ptr: &[usize],
+        old: &[f64],
+        a: &[f64],
+    ) -> Vec<usize> {
+        let mut marked = vec![false; self.len()];
+        for (j, w) in col_ptr.windows(2).enumerate() {
+            let (before, now) = (&old[w[0]..w[1]], &a[w[0]..w[1]]);
+            if before
+                .iter()
+                .zip(now)
+                .any(|(p, q)| p.to_bits() != q.to_bits())
+            {
+                marked[self.owner[j]] = true;
+            }
+        }
+        // parents come after their children
+        for s in 0..self.len() {
+            if marked[s]
+                && let Some(&row) = symbolic.supernode(s).pattern().first()
+            {
+                marked[self.owner[row]] = true;
+            }
+        }
+        (0..self.len()).filter(|&s| marked[s]).collect()
     }
 }
 

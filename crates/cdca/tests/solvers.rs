@@ -347,6 +347,19 @@ fn nested_dissection_leaves_less_fill_than_amd() {
     assert!((nd as f64) < 0.95 * amd as f64, "{nd} against AMD's {amd}");
 }
 
+/// The closed-crack plate at 56 × 56 with a second, kinked crack at odd
+/// angles (tips inside elements): large enough for a supernodal factor.
+fn two_cracks_56() -> Problem {
+    let scene = closed_scene(56, None)
+        .edit(|file| {
+            let mut second = file.cracks[0].clone();
+            second.points = Some(vec![[0.061, 0.213], [0.1347, 0.2391], [0.1882, 0.2274]]);
+            file.cracks.push(second);
+        })
+        .expect("scene");
+    problem(&scene)
+}
+
 /// A factor refactorised on its own pattern after a change of a few
 /// element blocks (contact at one crack's faces, or a crack moved within
 /// its elements, as the workbench's drag does) redoes only the supernodes
@@ -356,18 +369,8 @@ fn nested_dissection_leaves_less_fill_than_amd() {
 #[test]
 fn a_factor_redone_where_the_values_changed_is_the_factor_made_anew() {
     use cdca::discretisation::assembly::ElementBlock;
-    use cdca::discretisation::loads::traction_forces;
     use cdca::solvers::direct::Factor;
-    let scene = closed_scene(56, None)
-        .edit(|file| {
-            let mut second = file.cracks[0].clone();
-            second.points = Some(vec![[0.061, 0.213], [0.1347, 0.2391], [0.1882, 0.2274]]);
-            file.cracks.push(second);
-        })
-        .expect("scene");
-    let model = Model::new(scene);
-    let x = model.discretise(model.initial_cracks());
-    let f = traction_forces(&x, &model.scene.boundary);
+    let Problem { x, f } = two_cracks_56();
     // a penalty-like block on a few enriched elements of the second crack
     let block = |slot: usize, k: f64| {
         let n = 2 * x.enriched[slot].scalars.len();
@@ -424,18 +427,8 @@ fn a_factor_redone_where_the_values_changed_is_the_factor_made_anew() {
 /// inside elements, on a mesh large enough for a supernodal factor.
 #[test]
 fn a_factorisation_in_slices_is_the_factorisation_at_once() {
-    use cdca::discretisation::loads::traction_forces;
     use cdca::solvers::direct::Factor;
-    let scene = closed_scene(56, None)
-        .edit(|file| {
-            let mut second = file.cracks[0].clone();
-            second.points = Some(vec![[0.061, 0.213], [0.1347, 0.2391], [0.1882, 0.2274]]);
-            file.cracks.push(second);
-        })
-        .expect("scene");
-    let model = Model::new(scene);
-    let x = model.discretise(model.initial_cracks());
-    let f = traction_forces(&x, &model.scene.boundary);
+    let Problem { x, f } = two_cracks_56();
     let at_once = Factor::new(&x, &[]).expect("factor");
     let updates = at_once.updates().expect("a supernodal factor").clone();
     let reference = at_once.solve(&f).expect("solve");

@@ -35,6 +35,9 @@ pub struct Factor {
     ordered: Arc<Ordered>,
     /// The factorised matrix: the values of `ordered.lower`.
     a: Vec<f64>,
+    /// The values factorised before the last reassembly, kept as the
+    /// storage of the next one's.
+    before: Vec<f64>,
     /// The values of its Cholesky factor.
     l: Vec<f64>,
     /// The contact blocks assembled into it.
@@ -77,6 +80,7 @@ impl Factor {
         let factor = Self {
             ordered: Arc::clone(x.pattern()?.ordered()),
             a: Vec::new(),
+            before: Vec::new(),
             l: Vec::new(),
             blocks: Vec::new(),
             regular: 0,
@@ -98,12 +102,13 @@ impl Factor {
     pub fn reassemble(mut self, x: &Xfem, extra: &[ElementBlock]) -> Result<Self, SolveError> {
         assert!(x.is_integrated(), "{NOT_INTEGRATED}");
         let pattern = x.pattern()?;
-        let before = if Arc::ptr_eq(&self.ordered, pattern.ordered()) {
-            (self.is_factorised() && self.updates.is_some()).then(|| std::mem::take(&mut self.a))
-        } else {
+        let same = Arc::ptr_eq(&self.ordered, pattern.ordered());
+        if !same {
             self.updates = None;
-            None
-        };
+        }
+        let compare = same && self.is_factorised() && self.updates.is_some();
+        // the values factorised go to `before`, its storage takes the new
+        std::mem::swap(&mut self.a, &mut self.before);
         self.ordered = Arc::clone(pattern.ordered());
         resize_spare(&mut self.a, self.ordered.lower.row_idx().len());
         self.a.fill(0.0);
@@ -126,11 +131,15 @@ impl Factor {
         self.regular = e;
         self.correction = None;
         self.floor = 0.0;
-        self.todo = match (self.ordered.symbolic.raw(), &self.updates, before) {
-            (SymbolicCholeskyRaw::Supernodal(symbolic), Some(updates), Some(before)) => {
-                updates.changed(symbolic, self.ordered.lower.col_ptr(), &before, &self.a)
-            }
-            (raw, _, _) => {
+        self.todo = match (self.ordered.symbolic.raw(), &self.updates) {
+            (SymbolicCholeskyRaw::Supernodal(symbolic), Some(updates)) if compare => updates
+                .changed(
+                    symbolic,
+                    self.ordered.lower.col_ptr(),
+                    &self.before,
+                    &self.a,
+                ),
+            (raw, _) => {
                 // zeroed by the factorisation
                 resize_spare(&mut self.l, self.ordered.symbolic.len_val());
                 match raw {

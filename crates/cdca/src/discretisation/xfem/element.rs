@@ -177,6 +177,10 @@ fn reusable<'a>(
     (same && p.moved.iter().all(|q| (q - centre).norm() > p.far)).then_some(old)
 }
 
+/// Enrichments an element's point evaluation keeps on the stack (a tip's
+/// branch functions and a Heaviside or two; more only where cracks meet).
+const FEW_ENRICHMENTS: usize = 6;
+
 /// Values and gradients of the scalar shape functions of an enriched
 /// element at `x`; at a point of crack `face.0`, taken on side `face.1`
 /// (±1).
@@ -190,11 +194,23 @@ pub(super) fn eval_scalars(
     grads: &mut Vec<P2>,
 ) {
     let (n, dn) = mesh.shape(el.elem, x);
-    let ev: Vec<EnrValue> = el
-        .enrs
-        .iter()
-        .map(|&e| funcs.eval_sided(e, x, face))
-        .collect();
+    // on the stack for the usual few enrichments: this runs per quadrature
+    // point, up to 20 000 times for one element
+    let mut near = [EnrValue::default(); FEW_ENRICHMENTS];
+    let many: Vec<EnrValue>;
+    let ev: &[EnrValue] = if el.enrs.len() <= FEW_ENRICHMENTS {
+        for (v, &e) in near.iter_mut().zip(&el.enrs) {
+            *v = funcs.eval_sided(e, x, face);
+        }
+        &near[..el.enrs.len()]
+    } else {
+        many = el
+            .enrs
+            .iter()
+            .map(|&e| funcs.eval_sided(e, x, face))
+            .collect();
+        &many
+    };
     vals.clear();
     grads.clear();
     for s in &el.scalars {

@@ -3,6 +3,9 @@
 # layout (coplanar, stepped, overlapping) drawn at random, with a fixed seed,
 # and the overlapping pairs once more with the second flaw reflected across
 # the first flaw's line (the other step-over: "overlapping, mirrored"),
+# and once more with the bridge at 120° to the horizontal, so that the
+# flaws overlap across the load ("overlapping, across the load": Wong &
+# Einstein's bridging angle above 90°),
 # across the range of issue 34: flaws 3-4 mm long at 35-60° to the
 # horizontal, face friction 0-0.6, a bridge between the facing tips of
 # 0.7-1.3 flaw lengths; centred in the 30 mm specimen of the bundled pairs
@@ -34,10 +37,12 @@ def pair(layout, length, deg, bridge):
     overlapping pair (overlapping: the second flaw on the side of the first
     that its faces' slip makes a restraining step-over), or that direction
     reflected across the first flaw's line (overlapping, mirrored: a
-    releasing step-over)."""
+    releasing step-over), or up and back at 120° to the horizontal
+    (overlapping, across the load)."""
     e = unit(deg)
     a0, a1 = (0.0, 0.0), (length * e[0], length * e[1])
-    d = {"coplanar": e, "stepped": (-0.177, 0.984)}.get(layout, (0.2, -0.98))
+    d = {"coplanar": e, "stepped": (-0.177, 0.984),
+         "overlapping, across the load": unit(120)}.get(layout, (0.2, -0.98))
     if layout == "overlapping, mirrored":
         c, s = math.cos(2 * math.radians(deg)), math.sin(2 * math.radians(deg))
         d = (c * d[0] + s * d[1], s * d[0] - c * d[1])
@@ -49,10 +54,11 @@ def pair(layout, length, deg, bridge):
     shift = lambda p: [0.5 * W + p[0] - cx, 0.5 * W + p[1] - cy]
     return [[shift(a0), shift(a1)], [shift(b0), shift(b1)]]
 
-LAYOUTS = ("coplanar", "stepped", "overlapping", "overlapping, mirrored")
+LAYOUTS = ("coplanar", "stepped", "overlapping", "overlapping, mirrored",
+           "overlapping, across the load")
 runs = []
 for k, layout in enumerate(LAYOUTS):
-    # the mirrored pairs are the overlapping draws
+    # the mirrored and across-the-load pairs are the overlapping draws
     rng = random.Random(34 + min(k, 2))
     for _ in range(8):
         length = rng.uniform(3e-3, 4e-3)
@@ -66,7 +72,7 @@ def grow(run):
     scene["cracks"] = [{"points": p, "friction": mu} for p in pair(layout, length, deg, ratio * length)]
     # to failure: the product's step cap (200), whatever the base scene says
     del scene["growth"]["max_steps"]
-    path = f"bench-out/pairs/{layout.replace(', ', '_')}_{length * 1e3:.2f}_{deg:.1f}_{mu}_{ratio:.2f}.json"
+    path = f"bench-out/pairs/{layout.replace(', ', '_').replace(' ', '-')}_{length * 1e3:.2f}_{deg:.1f}_{mu}_{ratio:.2f}.json"
     json.dump(scene, open(path, "w"), indent=1)
     # exit 1 (a step that did not converge) still prints the history
     return json.loads(subprocess.run(["./target/release/cdca", "grow", path],
@@ -112,7 +118,7 @@ for key, layout in enumerate(LAYOUTS):
     for r in mine:
         outcomes[r[5]] = outcomes.get(r[5], 0) + 1
     text = ", ".join(f"{n} {o}" for o, n in sorted(outcomes.items(), key=lambda x: (-x[1], x[0])))
-    with open(os.path.join(out, f"{key + 1}-{layout.replace(', ', '-')}.md"), "w") as f:
+    with open(os.path.join(out, f"{key + 1}-{layout.replace(', ', '-').replace(' ', '-')}.md"), "w") as f:
         f.write(f"| {layout} | {len(mine)} | {linked} | {how} | {sum(r[7] for r in mine)} | {text} |\n")
 print(f"wrote bench-out/pairs.csv and {out}/")
 PY

@@ -18,6 +18,7 @@ use crate::geometry::cracks::{Crack, TipKind, split_specimen};
 use crate::report::{GrowthStepReport, KinkReport, Outcome, TipReport};
 use crate::scene::{Lineage, MIN_END_SEGMENT, Scene, SceneFile, SideBc, fmt_point};
 use crate::solvers::automaton::AutomatonParams;
+use crate::solvers::direct::Factor;
 use crate::solvers::linear::LinearSolver;
 use crate::solvers::relaxation::ResidualSample;
 
@@ -346,7 +347,7 @@ impl Simulation {
     /// elements it enriches, a load or the faces' law edited) that redoes
     /// only the supernodes whose values changed, bit for bit as a
     /// factorisation anew (`Factor::reassemble`).
-    fn adopt(mut self, factor: Option<crate::solvers::direct::Factor>) -> Self {
+    fn adopt(mut self, factor: Option<Factor>) -> Self {
         if let Some(f) = factor {
             self.scratch.solver.adopt_factor(f);
         }

@@ -106,7 +106,7 @@ impl Factor {
         if !same {
             self.updates = None;
         }
-        let compare = same && self.is_factorised() && self.updates.is_some();
+        let compare = same && self.is_factorised();
         // the values factorised go to `before`, its storage takes the new
         std::mem::swap(&mut self.a, &mut self.before);
         self.ordered = Arc::clone(pattern.ordered());
@@ -131,30 +131,23 @@ impl Factor {
         self.regular = e;
         self.correction = None;
         self.floor = 0.0;
-        self.todo = match (self.ordered.symbolic.raw(), &self.updates) {
-            (SymbolicCholeskyRaw::Supernodal(symbolic), Some(updates)) if compare => updates
-                .changed(
-                    symbolic,
-                    self.ordered.lower.col_ptr(),
-                    &self.before,
-                    &self.a,
-                ),
-            (raw, _) => {
+        let ordered = Arc::clone(&self.ordered);
+        let supernodal = match ordered.symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(symbolic) => Some(symbolic),
+            SymbolicCholeskyRaw::Simplicial(_) => None,
+        };
+        self.todo = match (supernodal, &self.updates) {
+            (Some(symbolic), Some(updates)) if compare => {
+                updates.changed(symbolic, ordered.lower.col_ptr(), &self.before, &self.a)
+            }
+            _ => {
                 // zeroed by the factorisation
-                resize_spare(&mut self.l, self.ordered.symbolic.len_val());
-                match raw {
-                    SymbolicCholeskyRaw::Supernodal(symbolic) => {
-                        (0..symbolic.n_supernodes()).collect()
-                    }
-                    SymbolicCholeskyRaw::Simplicial(_) => Vec::new(),
-                }
+                resize_spare(&mut self.l, ordered.symbolic.len_val());
+                supernodal.map_or_else(Vec::new, |s| (0..s.n_supernodes()).collect())
             }
         };
-        let simplicial = matches!(
-            self.ordered.symbolic.raw(),
-            SymbolicCholeskyRaw::Simplicial(_)
-        );
-        self.pending = (simplicial || !self.todo.is_empty()).then_some(0);
+        // a simplicial factor is factorised at once, in one call
+        self.pending = (supernodal.is_none() || !self.todo.is_empty()).then_some(0);
         Ok(self)
     }
 
@@ -364,7 +357,7 @@ impl Factor {
                     .updates
                     .as_ref()
                     .expect("a factorised supernodal factor");
-                Reached::forward(symbolic, updates.owner(), &self.l, b)
+                Reached::forward(symbolic, updates, &self.l, b)
             }
             SymbolicCholeskyRaw::Simplicial(_) => {
                 let n = self.ordered.perm.len();

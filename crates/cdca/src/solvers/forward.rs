@@ -14,6 +14,8 @@ use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
 use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 use faer::{Accum, MatMut, MatRef, Par};
 
+use crate::solvers::supernodal::Updates;
+
 /// A sparse vector: (index, value) pairs, by DOF or, inside a factor, by
 /// reordered position; an index may repeat (the values add).
 pub type SparseColumn = Vec<(usize, f64)>;
@@ -32,29 +34,19 @@ pub struct Reached {
 
 impl Reached {
     /// `L⁻¹ B` on the rows reached from the columns `b` of `B`, with the
-    /// factor `symbolic`, whose values are `l` (`owner[p]`: the supernode
-    /// holding row `p`, [`Updates::owner`](crate::solvers::supernodal::Updates::owner)).
+    /// factor `symbolic`, whose values are `l` and whose supernodes'
+    /// updates are `updates`.
     pub fn forward(
         symbolic: &SymbolicSupernodalCholesky<usize>,
-        owner: &[usize],
+        updates: &Updates,
         l: &[f64],
         b: &[SparseColumn],
     ) -> Self {
         let ns = symbolic.n_supernodes();
         let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
-        // supernodes holding a nonzero, then their ancestors (a parent's
-        // index is larger than its child's: one ascending pass)
-        let mut active = vec![false; ns];
-        for &(p, _) in b.iter().flatten() {
-            active[owner[p]] = true;
-        }
-        for s in 0..ns {
-            if active[s]
-                && let Some(&first) = symbolic.supernode(s).pattern().first()
-            {
-                active[owner[first]] = true;
-            }
-        }
+        let owner = updates.owner();
+        // supernodes holding a nonzero, and their ancestors
+        let active = updates.with_ancestors(symbolic, b.iter().flatten().map(|&(p, _)| p));
         // each active supernode's first row in the compact storage
         let mut offset = vec![usize::MAX; ns];
         let mut rows = Vec::new();

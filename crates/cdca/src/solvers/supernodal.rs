@@ -140,9 +140,8 @@ impl Updates {
     /// The supernodes whose values change when the values of `a` change
     /// from `old` (both by the entries of `a`'s lower triangle, in the
     /// symbolic factorisation's order), ascending: those holding a changed
-    /// column and their ancestors in the supernodal elimination tree (a
-    /// supernode's parent holds the first row of its off-diagonal
-    /// pattern). Every other supernode is the same, to the last bit, in a
+    /// column and their ancestors ([`with_ancestors`](Self::with_ancestors)).
+    /// Every other supernode is the same, to the last bit, in a
     /// factorisation of either.
     pub fn changed(
         &self,
@@ -151,18 +150,30 @@ impl Updates {
         old: &[f64],
         a: &[f64],
     ) -> Vec<usize> {
-        let mut marked = vec![false; self.len()];
-        for (j, w) in col_ptr.windows(2).enumerate() {
+        let changed = col_ptr.windows(2).enumerate().filter(|(_, w)| {
             let (before, now) = (&old[w[0]..w[1]], &a[w[0]..w[1]]);
-            if before
+            before
                 .iter()
                 .zip(now)
                 .any(|(p, q)| p.to_bits() != q.to_bits())
-            {
-                marked[self.owner[j]] = true;
-            }
+        });
+        let marked = self.with_ancestors(symbolic, changed.map(|(j, _)| j));
+        (0..self.len()).filter(|&s| marked[s]).collect()
+    }
+
+    /// Per supernode, whether it holds one of `rows` or is an ancestor of
+    /// one that does in the supernodal elimination tree (a supernode's
+    /// parent holds the first row of its off-diagonal pattern, and comes
+    /// after it: one ascending pass).
+    pub fn with_ancestors(
+        &self,
+        symbolic: &SymbolicSupernodalCholesky<usize>,
+        rows: impl IntoIterator<Item = usize>,
+    ) -> Vec<bool> {
+        let mut marked = vec![false; self.len()];
+        for p in rows {
+            marked[self.owner[p]] = true;
         }
-        // parents come after their children
         for s in 0..self.len() {
             if marked[s]
                 && let Some(&row) = symbolic.supernode(s).pattern().first()
@@ -170,7 +181,7 @@ impl Updates {
                 marked[self.owner[row]] = true;
             }
         }
-        (0..self.len()).filter(|&s| marked[s]).collect()
+        marked
     }
 }
 

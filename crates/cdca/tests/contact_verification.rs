@@ -721,6 +721,215 @@ fn a_few_changed_contact_states_solve_as_the_factorised_matrix() {
     assert_eq!(solver.correction_rank(), None, "{closed} points opened");
 }
 
+/// The DOFs of the elements that hold face points: what a contact
+/// iteration's gaps and contact blocks read.
+fn face_dofs(x: &cdca::discretisation::xfem::Xfem) -> Vec<usize> {
+    let mut dofs: Vec<usize> = x
+        .faces
+        .iter()
+        .flat_map(|fp| &x.enriched[fp.slot].dofs)
+        .filter(|&&d| d != cdca::discretisation::dofs::FIXED)
+        .map(|&d| d as usize)
+        .collect();
+    dofs.sort_unstable();
+    dofs.dedup();
+    dofs
+}
+
+/// A solve taken on the faces' rows alone (`solve_reaching`: the load's
+/// forward solve kept, the contact forces' on the part of the factor they
+/// reach, the backward solve on the faces' supernodes and their ancestors)
+/// gives the whole solve's values on the faces' DOFs to 1e-12 of the
+/// largest, leaves most other DOFs as they were, and completes into the
+/// whole solution (same tolerance, residual ~1e-13), factorised and
+/// through a low-rank correction; a right-hand side that differs from the
+/// load off the faces' DOFs is not taken.
+#[test]
+fn a_solve_on_the_faces_rows_is_the_whole_solve_there() {
+    use cdca::contact::law::{ContactState, FaceState, contact_system};
+    use cdca::solvers::linear::{DirectSolver, LinearSolver};
+
+    let (x, load, committed, u, states, info) = solved_kinked_flaw();
+    assert!(info.converged, "{info:?}");
+    let dofs = face_dofs(&x);
+    let system = |st: &[FaceState]| {
+        let mut f = load.clone();
+        let blocks = contact_system(&x, st, &committed, &mut f);
+        (blocks, f)
+    };
+    let mut stuck = states.clone();
+    let flipped = stuck
+        .iter_mut()
+        .zip(&x.faces)
+        .filter(|(s, fp)| s.state == ContactState::Slip && fp.follows.is_none())
+        .take(2)
+        .map(|(s, _)| s.state = ContactState::Stick)
+        .count();
+    assert_eq!(flipped, 2, "slipping points to change");
+    let mut solver = DirectSolver::default();
+    let (blocks, f) = system(&states);
+    // factorised here; the solves below start on that factor
+    solver
+        .solve(&x, &blocks, &f, &mut u.clone(), true)
+        .expect("solve");
+    let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+    for (case, st) in [("factorised", &states), ("corrected", &stuck)] {
+        let (blocks, f) = system(st);
+        let mut reference = u.clone();
+        let ref_info = DirectSolver::default()
+            .solve(&x, &blocks, &f, &mut reference, true)
+            .expect("whole solve");
+        assert!(ref_info.converged, "{ref_info:?}");
+        let largest = reference.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        solver
+            .start(&x, &blocks, &f, &u, case == "corrected")
+            .expect("start");
+        assert_eq!(
+            solver.correction_rank().is_some(),
+            case == "corrected",
+            "{case}"
+        );
+        let elsewhere = vec![7.0; u.len()];
+        let partial = solver
+            .solve_reaching(&load, &dofs, &elsewhere)
+            .expect("a factor on the faces' rows");
+        for &d in &dofs {
+            let e = (partial[d] - reference[d]).abs() / largest;
+            assert!(e <= 1e-12, "{case}: DOF {d} off by {e:e}");
+        }
+        let kept = partial.iter().filter(|&&v| v == 7.0).count();
+        assert!(
+            2 * kept > u.len(),
+            "{case}: only {kept} of {} rows left",
+            u.len()
+        );
+        let status = solver.run(&x, &blocks, usize::MAX).expect("completed");
+        assert!(status.finished && status.converged, "{case}: {status:?}");
+        let diff: Vec<f64> = solver
+            .u()
+            .iter()
+            .zip(&reference)
+            .map(|(a, b)| a - b)
+            .collect();
+        let rel = norm(&diff) / norm(&reference);
+        assert!(rel <= 1e-12, "{case}: completed solve differs by {rel:e}");
+    }
+    // a load on a DOF away from the faces: not a faces' solve
+    let (blocks, f) = system(&states);
+    let away = (0..u.len())
+        .find(|d| dofs.binary_search(d).is_err())
+        .expect("a DOF");
+    let mut other = load.clone();
+    other[away] += 1.0;
+    solver.start(&x, &blocks, &f, &u, false).expect("start");
+    assert!(solver.solve_reaching(&other, &dofs, &u).is_none());
+}
+
+/// The contact iteration with its state changes found on the faces' rows
+/// ends where the same iteration with whole solves throughout does: the
+/// same iterations and states, and the displacement to 1e-11 (the kinked
+/// flaw, and the same flaw under 40% of the load with the faces' friction
+/// at 1.5 on a penalty 100 times stiffer; the two differ by round-off,
+/// 1.0e-12 on the stiff penalty, where every solve's residual is ~1e-13).
+#[test]
+fn contact_solves_on_the_faces_rows_end_where_whole_solves_do() {
+    use cdca::contact::iteration::solve_with_contact;
+    use cdca::contact::status::ContactParams;
+    use cdca::solvers::linear::{DirectSolver, LinearSolver};
+
+    /// The direct solver without `solve_reaching`: every iteration solves
+    /// the whole system.
+    #[derive(Default)]
+    struct Whole(DirectSolver);
+    impl LinearSolver for Whole {
+        fn name(&self) -> &'static str {
+            "direct"
+        }
+        fn start(
+            &mut self,
+            x: &cdca::discretisation::xfem::Xfem,
+            blocks: &[cdca::discretisation::assembly::ElementBlock],
+            f: &[f64],
+            u0: &[f64],
+            matrix_changed: bool,
+        ) -> Result<(), cdca::SolveError> {
+            self.0.start(x, blocks, f, u0, matrix_changed)
+        }
+        fn run(
+            &mut self,
+            x: &cdca::discretisation::xfem::Xfem,
+            blocks: &[cdca::discretisation::assembly::ElementBlock],
+            max_iterations: usize,
+        ) -> Result<cdca::solvers::relaxation::RelaxStatus, cdca::SolveError> {
+            self.0.run(x, blocks, max_iterations)
+        }
+        fn u(&self) -> &[f64] {
+            self.0.u()
+        }
+        fn info(&self) -> cdca::solvers::linear::LinearInfo {
+            self.0.info()
+        }
+        fn factorising(&self) -> bool {
+            self.0.factorising()
+        }
+        fn samples(&self) -> &[cdca::solvers::relaxation::ResidualSample] {
+            self.0.samples()
+        }
+        fn coupling(
+            &self,
+            rows: &[cdca::solvers::forward::SparseColumn],
+            cols: &[cdca::solvers::forward::SparseColumn],
+        ) -> Option<nalgebra::DMatrix<f64>> {
+            self.0.coupling(rows, cols)
+        }
+    }
+
+    let (x, load, committed, _, _, _) = solved_kinked_flaw();
+    let mut stiff = x.clone();
+    for c in &mut stiff.funcs.cracks {
+        c.friction = 1.5;
+        c.kn *= 100.0;
+        c.kt *= 100.0;
+    }
+    let light: Vec<f64> = load.iter().map(|v| 0.4 * v).collect();
+    for (case, x, load) in [("kinked flaw", &x, &load), ("stiff, μ 1.5", &stiff, &light)] {
+        let solve = |solver: &mut dyn LinearSolver| {
+            let mut u = vec![0.0; x.n_free()];
+            let (states, info) = solve_with_contact(
+                x,
+                load,
+                &committed,
+                &mut u,
+                solver,
+                ContactParams::default(),
+            )
+            .expect("contact solve");
+            (u, states, info)
+        };
+        let (u, states, info) = solve(&mut DirectSolver::default());
+        let (u_whole, states_whole, info_whole) = solve(&mut Whole::default());
+        assert!(
+            info.converged && info_whole.converged,
+            "{case}: {info:?} {info_whole:?}"
+        );
+        assert!(
+            info.face_solves > 0,
+            "{case}: no state change on the faces' rows"
+        );
+        assert_eq!(info_whole.face_solves, 0, "{case}");
+        assert_eq!(info.iterations, info_whole.iterations, "{case}");
+        let same = states
+            .iter()
+            .zip(&states_whole)
+            .all(|(a, b)| a.state == b.state);
+        assert!(same, "{case}: contact states differ");
+        let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+        let diff: Vec<f64> = u.iter().zip(&u_whole).map(|(a, b)| a - b).collect();
+        let rel = norm(&diff) / norm(&u_whole);
+        assert!(rel <= 1e-11, "{case}: displacement differs by {rel:e}");
+    }
+}
+
 /// Reference: whole solves. The coupling `aᵀ K⁻¹ b` between face vectors
 /// (each face point's normal jump against each one's tangential jump) that
 /// the friction limits' Newton step reads comes from forward solves of the

@@ -22,6 +22,7 @@ use crate::discretisation::xfem::Xfem;
 use crate::error::SolveError;
 use crate::solvers::linear::LinearSolver;
 use crate::solvers::relaxation::{RelaxStatus, ResidualSample};
+use web_time::Instant;
 
 /// The contact iteration as a resumable state machine: each
 /// [`advance`](Self::advance) call runs a slice of the current linear
@@ -35,7 +36,9 @@ use crate::solvers::relaxation::{RelaxStatus, ResidualSample};
 /// One contact iteration: assemble the contact system of the current
 /// states (`k_N n⊗n` at closed points, `+ k_T t⊗t` at stick, the friction
 /// force `±τ_y` of slip points), solve it, map every point's state at the
-/// solution; at most `max_iterations` times.
+/// solution; at most `max_iterations` times. With a factor (the direct
+/// solver), an iteration that changes a state is solved on the faces'
+/// rows only ([`Self::state_change_on_the_faces`]).
 ///
 /// Friction is solved by an outer loop over the friction limits `τ_y`
 /// (with the default penalty `k_N = 100 E/h`, friction taken from the last
@@ -88,6 +91,9 @@ pub struct ContactSolve {
     inner_solution: Option<Vec<f64>>,
     /// The last outer step was Newton's ([`newton_limits`]).
     after_newton: bool,
+    /// The DOFs the face points' gaps read, once needed
+    /// ([`Self::state_change_on_the_faces`]).
+    face_dofs: Option<Vec<usize>>,
     /// Newton steps after which some point was not in its Coulomb state:
     /// at [`NEWTON_MISSES`] the limits are mixed for the rest of the solve.
     newton_misses: u32,
@@ -185,6 +191,7 @@ impl ContactSolve {
             limit_mix: LimitMix::default(),
             inner_solution: None,
             after_newton: false,
+            face_dofs: None,
             newton_misses: 0,
         }
     }
@@ -219,7 +226,7 @@ impl ContactSolve {
         if self.reached.ended(committed) {
             return Ok(self.status(true));
         }
-        let Some(system) = &mut self.system else {
+        if self.system.is_none() {
             self.set_up(x, committed, factored, u, solver)?;
             if solver.factorising() {
                 // a factorisation runs in calls of its own (frame slices in
@@ -227,7 +234,11 @@ impl ContactSolve {
                 return Ok(self.waiting());
             }
             return self.advance(x, committed, factored, u, solver, max_iterations);
-        };
+        }
+        if let Some(status) = self.state_change_on_the_faces(x, committed, u, solver)? {
+            return Ok(status);
+        }
+        let system = self.system.as_mut().expect("set up above");
         let status = solver.run(x, &system.blocks, max_iterations.max(1))?;
         u.clear();
         u.extend_from_slice(solver.u());
@@ -270,6 +281,64 @@ impl ContactSolve {
             }
             None => Ok(self.status(self.reached.finished)),
         }
+    }
+
+    /// A contact iteration whose solve changes some point's state needs
+    /// the solution only on the faces' DOFs: its damped step and the
+    /// states mapped there read nothing else, and the next iteration
+    /// solves its own system anew. So the solve is first taken on the rows
+    /// those DOFs need ([`LinearSolver::solve_reaching`]: the load's
+    /// forward solve kept per factor, the contact forces' on the part of
+    /// the factor they reach, the backward solve on the faces' part; the
+    /// whole solve's values there to round-off). Where a state changes,
+    /// the iteration ends on it (every other DOF keeps the last iterate's
+    /// value, so the change it reports is that of the faces' part), with
+    /// no whole solve and no residual check. Where none
+    /// changes, `None`: the outer step needs the whole solution, and the
+    /// linear solve completes the one begun. Never in the last iteration
+    /// allowed, so an iteration that ends the solve always has the whole
+    /// solution, with its residual checked.
+    fn state_change_on_the_faces(
+        &mut self,
+        x: &Xfem,
+        committed: &[FaceState],
+        u: &mut Vec<f64>,
+        solver: &mut dyn LinearSolver,
+    ) -> Result<Option<RelaxStatus>, SolveError> {
+        let last = self.reached.info.iterations + 1 >= self.params.max_contact_iterations();
+        let Some(system) = self.system.as_ref().filter(|s| s.copied == 0) else {
+            return Ok(None);
+        };
+        if last || solver.factorising() {
+            return Ok(None);
+        }
+        let clock = Instant::now();
+        let dofs = self.face_dofs.get_or_insert_with(|| face_dofs(x));
+        let Some(g) = solver.solve_reaching(&self.load, dofs, u) else {
+            return Ok(None);
+        };
+        let limits = self.limits.clone().unwrap_or_default();
+        let mut states = self.reached.states.clone();
+        let changed = update_limited(
+            x,
+            &g,
+            committed,
+            &mut states,
+            &limits,
+            &mut self.reached.tracker.clone(),
+            self.params.max_flips,
+        );
+        if changed == 0 && differ(&signature(&states), &system.signature) == 0 {
+            return Ok(None);
+        }
+        *u = g;
+        self.done_iterations += 1;
+        self.done_seconds += clock.elapsed().as_secs_f64();
+        self.reached.info.linear_iterations += 1;
+        self.reached.info.face_solves += 1;
+        let system = self.system.take().expect("checked above");
+        self.end_contact_iteration(x, committed, u, &system, true, &*solver)
+            .map(Some)
     }
 
     /// The progress while a linear solve is set up: the last contact
@@ -533,6 +602,21 @@ impl ContactSolve {
     pub fn into_reached(self) -> Reached {
         self.reached
     }
+}
+
+/// The free DOFs of the elements holding face points (those their gaps
+/// and contact blocks read), ascending.
+fn face_dofs(x: &Xfem) -> Vec<usize> {
+    let mut dofs: Vec<usize> = x
+        .faces
+        .iter()
+        .flat_map(|fp| &x.enriched[fp.slot].dofs)
+        .filter(|&&d| d != FIXED)
+        .map(|&d| d as usize)
+        .collect();
+    dofs.sort_unstable();
+    dofs.dedup();
+    dofs
 }
 
 /// `K u − λ f_ext` at the solution `u` of `system`: its contact forces

@@ -72,6 +72,10 @@ pub struct ContactInfo {
     pub unsettled: usize,
     /// Linear iterations summed over the contact iterations.
     pub linear_iterations: usize,
+    /// [`ContactSolve`](crate::contact::iteration::ContactSolve): contact
+    /// iterations that changed a state on a solve of the faces' rows alone
+    /// (no whole backward solve, no residual check).
+    pub face_solves: usize,
     /// The last linear solve.
     pub last: LinearInfo,
 }

@@ -7,13 +7,15 @@ use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::linalg::matmul::matmul_with_conj;
+use faer::linalg::triangular_solve::solve_upper_triangular_in_place_with_conj;
 use faer::sparse::SparseColMatRef;
 use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
 use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
 use faer::sparse::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_lower_triangular_transpose_in_place,
 };
-use faer::{Conj, MatMut, Side, Spec, get_global_parallelism};
+use faer::{Accum, Conj, MatMut, MatRef, Side, Spec, get_global_parallelism};
 use nalgebra::DMatrix;
 
 use crate::discretisation::assembly::ElementBlock;
@@ -60,6 +62,9 @@ pub struct Factor {
     /// The next of `todo` to factorise, while the numeric factorisation is
     /// under way ([`factorise_slice`](Self::factorise_slice)).
     pending: Option<usize>,
+    /// A load and its forward solve `L⁻¹ P load` with this factor, kept
+    /// for [`solve_reaching`](Self::solve_reaching).
+    load_forward: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 impl Factor {
@@ -90,6 +95,7 @@ impl Factor {
             todo: Vec::new(),
             // nothing factorised yet
             pending: Some(0),
+            load_forward: None,
         };
         factor.reassemble(x, extra)
     }
@@ -131,6 +137,7 @@ impl Factor {
         self.regular = e;
         self.correction = None;
         self.floor = 0.0;
+        self.load_forward = None;
         let ordered = Arc::clone(&self.ordered);
         let supernodal = match ordered.symbolic.raw() {
             SymbolicCholeskyRaw::Supernodal(symbolic) => Some(symbolic),
@@ -430,6 +437,126 @@ impl Factor {
         Ok(u)
     }
 
+    /// The solve of `f` taken on the rows that the DOFs `dofs` need only,
+    /// for an `f` that differs from `load` on `dofs` alone (a contact
+    /// iteration's right-hand side: the load, plus contact forces on the
+    /// faces' DOFs). The forward solve is that of `load`, kept per factor,
+    /// plus that of `f − load` on the supernodes it reaches
+    /// ([`Reached::forward`]); the backward solve runs on the supernodes
+    /// holding `dofs` and their ancestors (a row's value in `L⁻ᵀ z`
+    /// depends on its ancestors' alone). [`complete`](Self::complete)
+    /// finishes it into the whole solution. `None` for a simplicial factor
+    /// and for an `f` that differs from `load` off `dofs`.
+    pub fn solve_reaching(&mut self, f: &[f64], load: &[f64], dofs: &[usize]) -> Option<Partial> {
+        let SymbolicCholeskyRaw::Supernodal(_) = self.ordered.symbolic.raw() else {
+            return None;
+        };
+        let mut on_dofs = vec![false; f.len()];
+        for &d in dofs {
+            on_dofs[d] = true;
+        }
+        let off_load = f.len() != load.len()
+            || f.iter()
+                .zip(load)
+                .zip(&on_dofs)
+                .any(|((a, b), &on)| !on && a != b);
+        if off_load {
+            return None;
+        }
+        if self.load_forward.as_ref().is_none_or(|(l, _)| l != load) {
+            let mut z: Vec<f64> = self.ordered.perm.iter().map(|&d| load[d]).collect();
+            self.forward(&mut z, 1);
+            self.load_forward = Some((load.to_vec(), z));
+        }
+        let o = &*self.ordered;
+        let SymbolicCholeskyRaw::Supernodal(symbolic) = o.symbolic.raw() else {
+            return None;
+        };
+        let updates = self.updates.as_ref()?;
+        let (_, z_load) = self.load_forward.as_ref()?;
+        let mut y = z_load.clone();
+        let forces: SparseColumn = dofs
+            .iter()
+            .map(|&d| (o.inv[d], f[d] - load[d]))
+            .filter(|&(_, v)| v != 0.0)
+            .collect();
+        let reached = Reached::forward(symbolic, updates, &self.l, &[forces]);
+        for (&row, &v) in reached.rows.iter().zip(&reached.values) {
+            y[row] += v;
+        }
+        if let Some(c) = &self.correction {
+            c.adjust_forward(&mut y);
+        }
+        let done = updates.with_ancestors(symbolic, dofs.iter().map(|&d| o.inv[d]));
+        self.backward_on(&mut y, |s| done[s]);
+        Some(Partial { y, done })
+    }
+
+    /// The rows of `partial` that its backward solve has reached, as DOF
+    /// values in `u` (the others left as they are).
+    pub fn reached_rows(&self, partial: &Partial, u: &mut [f64]) {
+        let o = &*self.ordered;
+        if let SymbolicCholeskyRaw::Supernodal(symbolic) = o.symbolic.raw() {
+            let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
+            for s in (0..partial.done.len()).filter(|&s| partial.done[s]) {
+                for i in begin[s]..end[s] {
+                    u[o.perm[i]] = partial.y[i];
+                }
+            }
+        }
+    }
+
+    /// The whole solution from a [`solve_reaching`](Self::solve_reaching)
+    /// of this factor: the backward solve on the supernodes it left.
+    pub fn complete(&self, mut partial: Partial) -> Result<Vec<f64>, SolveError> {
+        let done = std::mem::take(&mut partial.done);
+        self.backward_on(&mut partial.y, |s| !done[s]);
+        let o = &*self.ordered;
+        let u: Vec<f64> = o.inv.iter().map(|&i| partial.y[i]).collect();
+        if let Some(i) = u.iter().position(|v| !v.is_finite()) {
+            return Err(SolveError::NonFinite {
+                place: format!("direct solution, DOF {i}"),
+            });
+        }
+        Ok(u)
+    }
+
+    /// `y ← L⁻ᵀ y` on the supernodes `take` selects, from the last down (as
+    /// faer's `l_transpose_solve_with_conj`, whose kernels it calls): the
+    /// whole backward solve when the ancestors of every selected
+    /// supernode are solved first or selected.
+    fn backward_on(&self, y: &mut [f64], take: impl Fn(usize) -> bool) {
+        let o = &*self.ordered;
+        let SymbolicCholeskyRaw::Supernodal(symbolic) = o.symbolic.raw() else {
+            return;
+        };
+        let l = SupernodalLltRef::new(symbolic, &self.l);
+        let par = get_global_parallelism();
+        let mut gathered = Vec::new();
+        for s in (0..symbolic.n_supernodes()).rev().filter(|&s| take(s)) {
+            let node = l.supernode(s);
+            let (start, pattern) = (node.start(), node.pattern());
+            let ls = node.val();
+            let size = ls.ncols();
+            let (top, bottom) = ls.split_at_row(size);
+            gathered.clear();
+            gathered.extend(pattern.iter().map(|&i| y[i]));
+            let mut x = MatMut::from_column_major_slice_mut(y, o.perm.len(), 1);
+            let mut x_top = x.as_mut().subrows_mut(start, size);
+            matmul_with_conj(
+                x_top.as_mut(),
+                Accum::Add,
+                bottom.transpose(),
+                Conj::No,
+                MatRef::from_column_major_slice(&gathered, pattern.len(), 1),
+                Conj::No,
+                -1.0,
+                par,
+            );
+            solve_upper_triangular_in_place_with_conj(top.transpose(), Conj::No, x_top, par);
+        }
+    }
+
     /// `‖f − K u‖ / ‖f‖` (or ‖K u‖ when f = 0) with the factorised `K`.
     pub fn relative_residual(&self, f: &[f64], u: &[f64]) -> f64 {
         let mut r = vec![0.0; f.len()];
@@ -461,6 +588,14 @@ impl Factor {
             r[d] = rp[i];
         }
     }
+}
+
+/// A solve taken on part of a supernodal factor
+/// ([`Factor::solve_reaching`]): the reordered right-hand side after the
+/// forward solve, and after the backward solve on the supernodes `done`.
+pub struct Partial {
+    y: Vec<f64>,
+    done: Vec<bool>,
 }
 
 /// A factorisation that met a non-positive pivot.

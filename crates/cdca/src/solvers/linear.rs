@@ -12,7 +12,7 @@ use crate::discretisation::assembly::ElementBlock;
 use crate::discretisation::xfem::Xfem;
 use crate::error::SolveError;
 use crate::scene::DIRECT_TOLERANCE;
-use crate::solvers::direct::{FACTOR_SLICE_FLOPS, Factor};
+use crate::solvers::direct::{FACTOR_SLICE_FLOPS, Factor, Partial};
 use crate::solvers::forward::SparseColumn;
 use crate::solvers::relaxation::{RelaxStatus, ResidualSample};
 
@@ -82,6 +82,22 @@ pub trait LinearSolver {
     /// displacement along `a`, without a solve of the whole system. `None`
     /// for a solver that keeps no factor.
     fn coupling(&self, _rows: &[SparseColumn], _cols: &[SparseColumn]) -> Option<DMatrix<f64>> {
+        None
+    }
+
+    /// The started solve's solution on the rows that the DOFs `dofs`
+    /// need, without the rest of the system and without a residual check,
+    /// when its right-hand side differs from `load` on `dofs` alone:
+    /// the whole solve's to round-off on `dofs`, with every other DOF
+    /// keeping its value in `elsewhere`. For a contact iteration that only
+    /// needs the faces' gaps to see whether a state changes. `None` for a
+    /// solver that keeps no factor, and while the factor is not complete.
+    fn solve_reaching(
+        &mut self,
+        _load: &[f64],
+        _dofs: &[usize],
+        _elsewhere: &[f64],
+    ) -> Option<Vec<f64>> {
         None
     }
 
@@ -169,6 +185,10 @@ pub struct DirectSolver {
     samples: Vec<ResidualSample>,
     /// Setup time of the started solve, s.
     setup_seconds: f64,
+    /// The started solve taken on the faces' rows
+    /// ([`solve_reaching`](LinearSolver::solve_reaching)), which the whole
+    /// solve completes.
+    partial: Option<Partial>,
 }
 
 impl DirectSolver {
@@ -243,7 +263,8 @@ impl DirectSolver {
     /// [`corrected_tolerance`](Self::corrected_tolerance) through a
     /// correction) and falls: the solution, its residual and the
     /// refinements taken.
-    fn refined(&self) -> Result<(Vec<f64>, f64, usize), SolveError> {
+    fn refined(&mut self) -> Result<(Vec<f64>, f64, usize), SolveError> {
+        let partial = self.partial.take();
         let factor = self
             .factors
             .first()
@@ -253,7 +274,10 @@ impl DirectSolver {
         } else {
             DIRECT_TOLERANCE
         };
-        let mut u = factor.solve(&self.f)?;
+        let mut u = match partial {
+            Some(p) => factor.complete(p)?,
+            None => factor.solve(&self.f)?,
+        };
         let mut residual = factor.relative_residual(&self.f, &u);
         let mut refinements = 0;
         while residual > tolerance && refinements < MAX_REFINEMENTS {
@@ -316,6 +340,7 @@ impl LinearSolver for DirectSolver {
         self.u.extend_from_slice(u0);
         self.status = RelaxStatus::default();
         self.samples.clear();
+        self.partial = None;
         self.setup_seconds = clock.elapsed().as_secs_f64();
         Ok(())
     }
@@ -385,6 +410,24 @@ impl LinearSolver for DirectSolver {
 
     fn coupling(&self, rows: &[SparseColumn], cols: &[SparseColumn]) -> Option<DMatrix<f64>> {
         self.factors.first().map(|f| f.coupling(rows, cols))
+    }
+
+    fn solve_reaching(
+        &mut self,
+        load: &[f64],
+        dofs: &[usize],
+        elsewhere: &[f64],
+    ) -> Option<Vec<f64>> {
+        let factor = self.factors.first_mut().filter(|f| f.is_factorised())?;
+        let partial = factor.solve_reaching(&self.f, load, dofs)?;
+        let mut u = elsewhere.to_vec();
+        factor.reached_rows(&partial, &mut u);
+        if u.iter().any(|v| !v.is_finite()) {
+            return None;
+        }
+        // the whole solve, if it follows, completes this one
+        self.partial = Some(partial);
+        Some(u)
     }
 
     fn samples(&self) -> &[ResidualSample] {

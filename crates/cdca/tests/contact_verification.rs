@@ -837,53 +837,6 @@ fn contact_solves_on_the_faces_rows_end_where_whole_solves_do() {
     use cdca::contact::status::ContactParams;
     use cdca::solvers::linear::{DirectSolver, LinearSolver};
 
-    /// The direct solver without `solve_reaching`: every iteration solves
-    /// the whole system.
-    #[derive(Default)]
-    struct Whole(DirectSolver);
-    impl LinearSolver for Whole {
-        fn name(&self) -> &'static str {
-            "direct"
-        }
-        fn start(
-            &mut self,
-            x: &cdca::discretisation::xfem::Xfem,
-            blocks: &[cdca::discretisation::assembly::ElementBlock],
-            f: &[f64],
-            u0: &[f64],
-            matrix_changed: bool,
-        ) -> Result<(), cdca::SolveError> {
-            self.0.start(x, blocks, f, u0, matrix_changed)
-        }
-        fn run(
-            &mut self,
-            x: &cdca::discretisation::xfem::Xfem,
-            blocks: &[cdca::discretisation::assembly::ElementBlock],
-            max_iterations: usize,
-        ) -> Result<cdca::solvers::relaxation::RelaxStatus, cdca::SolveError> {
-            self.0.run(x, blocks, max_iterations)
-        }
-        fn u(&self) -> &[f64] {
-            self.0.u()
-        }
-        fn info(&self) -> cdca::solvers::linear::LinearInfo {
-            self.0.info()
-        }
-        fn factorising(&self) -> bool {
-            self.0.factorising()
-        }
-        fn samples(&self) -> &[cdca::solvers::relaxation::ResidualSample] {
-            self.0.samples()
-        }
-        fn coupling(
-            &self,
-            rows: &[cdca::solvers::forward::SparseColumn],
-            cols: &[cdca::solvers::forward::SparseColumn],
-        ) -> Option<nalgebra::DMatrix<f64>> {
-            self.0.coupling(rows, cols)
-        }
-    }
-
     let (x, load, committed, _, _, _) = solved_kinked_flaw();
     let mut stiff = x.clone();
     for c in &mut stiff.funcs.cracks {
@@ -907,7 +860,11 @@ fn contact_solves_on_the_faces_rows_end_where_whole_solves_do() {
             (u, states, info)
         };
         let (u, states, info) = solve(&mut DirectSolver::default());
-        let (u_whole, states_whole, info_whole) = solve(&mut Whole::default());
+        let mut whole = Restricted {
+            couplings: true,
+            ..Restricted::default()
+        };
+        let (u_whole, states_whole, info_whole) = solve(&mut whole);
         assert!(
             info.converged && info_whole.converged,
             "{case}: {info:?} {info_whole:?}"
@@ -1016,7 +973,7 @@ fn the_friction_limits_newton_step_ends_where_the_mix_does() {
         &load,
         &committed,
         &mut mixed_u,
-        &mut Mixed::default(),
+        &mut Restricted::default(),
         ContactParams::default(),
     )
     .expect("solve");
@@ -1036,13 +993,18 @@ fn the_friction_limits_newton_step_ends_where_the_mix_does() {
     assert!(info.iterations < mixed_info.iterations);
 }
 
-/// The direct solver without its couplings: the contact iteration mixes
-/// the friction limits (Anderson) instead of taking Newton's step.
+/// The direct solver restricted: every contact iteration solves the whole
+/// system (no `solve_reaching`), and without `couplings` the contact
+/// iteration mixes the friction limits (Anderson) instead of taking
+/// Newton's step.
 #[derive(Default)]
-struct Mixed(cdca::solvers::linear::DirectSolver);
-impl cdca::solvers::linear::LinearSolver for Mixed {
+struct Restricted {
+    direct: cdca::solvers::linear::DirectSolver,
+    couplings: bool,
+}
+impl cdca::solvers::linear::LinearSolver for Restricted {
     fn name(&self) -> &'static str {
-        self.0.name()
+        self.direct.name()
     }
     fn start(
         &mut self,
@@ -1052,7 +1014,7 @@ impl cdca::solvers::linear::LinearSolver for Mixed {
         u0: &[f64],
         changed: bool,
     ) -> Result<(), cdca::error::SolveError> {
-        self.0.start(x, blocks, f, u0, changed)
+        self.direct.start(x, blocks, f, u0, changed)
     }
     fn run(
         &mut self,
@@ -1060,16 +1022,25 @@ impl cdca::solvers::linear::LinearSolver for Mixed {
         blocks: &[cdca::discretisation::assembly::ElementBlock],
         max: usize,
     ) -> Result<cdca::solvers::relaxation::RelaxStatus, cdca::error::SolveError> {
-        self.0.run(x, blocks, max)
+        self.direct.run(x, blocks, max)
     }
     fn u(&self) -> &[f64] {
-        self.0.u()
+        self.direct.u()
     }
     fn info(&self) -> cdca::solvers::linear::LinearInfo {
-        self.0.info()
+        self.direct.info()
     }
     fn samples(&self) -> &[cdca::solvers::relaxation::ResidualSample] {
-        self.0.samples()
+        self.direct.samples()
+    }
+    fn coupling(
+        &self,
+        rows: &[cdca::solvers::forward::SparseColumn],
+        cols: &[cdca::solvers::forward::SparseColumn],
+    ) -> Option<nalgebra::DMatrix<f64>> {
+        self.couplings
+            .then(|| self.direct.coupling(rows, cols))
+            .flatten()
     }
 }
 

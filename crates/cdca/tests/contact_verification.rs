@@ -747,6 +747,7 @@ fn face_dofs(x: &cdca::discretisation::xfem::Xfem) -> Vec<usize> {
 #[test]
 fn a_solve_on_the_faces_rows_is_the_whole_solve_there() {
     use cdca::contact::law::{ContactState, FaceState, contact_system};
+    use cdca::contact::status::relative_change;
     use cdca::solvers::linear::{DirectSolver, LinearSolver};
 
     let (x, load, committed, u, states, info) = solved_kinked_flaw();
@@ -772,7 +773,6 @@ fn a_solve_on_the_faces_rows_is_the_whole_solve_there() {
     solver
         .solve(&x, &blocks, &f, &mut u.clone(), true)
         .expect("solve");
-    let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
     for (case, st) in [("factorised", &states), ("corrected", &stuck)] {
         let (blocks, f) = system(st);
         let mut reference = u.clone();
@@ -805,13 +805,7 @@ fn a_solve_on_the_faces_rows_is_the_whole_solve_there() {
         );
         let status = solver.run(&x, &blocks, usize::MAX).expect("completed");
         assert!(status.finished && status.converged, "{case}: {status:?}");
-        let diff: Vec<f64> = solver
-            .u()
-            .iter()
-            .zip(&reference)
-            .map(|(a, b)| a - b)
-            .collect();
-        let rel = norm(&diff) / norm(&reference);
+        let rel = relative_change(&reference, solver.u());
         assert!(rel <= 1e-12, "{case}: completed solve differs by {rel:e}");
     }
     // a load on a DOF away from the faces: not a faces' solve
@@ -834,7 +828,7 @@ fn a_solve_on_the_faces_rows_is_the_whole_solve_there() {
 #[test]
 fn contact_solves_on_the_faces_rows_end_where_whole_solves_do() {
     use cdca::contact::iteration::solve_with_contact;
-    use cdca::contact::status::ContactParams;
+    use cdca::contact::status::{ContactParams, relative_change};
     use cdca::solvers::linear::{DirectSolver, LinearSolver};
 
     let (x, load, committed, _, _, _) = solved_kinked_flaw();
@@ -880,9 +874,7 @@ fn contact_solves_on_the_faces_rows_end_where_whole_solves_do() {
             .zip(&states_whole)
             .all(|(a, b)| a.state == b.state);
         assert!(same, "{case}: contact states differ");
-        let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
-        let diff: Vec<f64> = u.iter().zip(&u_whole).map(|(a, b)| a - b).collect();
-        let rel = norm(&diff) / norm(&u_whole);
+        let rel = relative_change(&u_whole, &u);
         assert!(rel <= 1e-11, "{case}: displacement differs by {rel:e}");
     }
 }

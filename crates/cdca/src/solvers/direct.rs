@@ -448,7 +448,8 @@ impl Factor {
     /// finishes it into the whole solution. `None` for a simplicial factor
     /// and for an `f` that differs from `load` off `dofs`.
     pub fn solve_reaching(&mut self, f: &[f64], load: &[f64], dofs: &[usize]) -> Option<Partial> {
-        let SymbolicCholeskyRaw::Supernodal(_) = self.ordered.symbolic.raw() else {
+        let ordered = Arc::clone(&self.ordered);
+        let SymbolicCholeskyRaw::Supernodal(symbolic) = ordered.symbolic.raw() else {
             return None;
         };
         let mut on_dofs = vec![false; f.len()];
@@ -464,14 +465,11 @@ impl Factor {
             return None;
         }
         if self.load_forward.as_ref().is_none_or(|(l, _)| l != load) {
-            let mut z: Vec<f64> = self.ordered.perm.iter().map(|&d| load[d]).collect();
+            let mut z: Vec<f64> = ordered.perm.iter().map(|&d| load[d]).collect();
             self.forward(&mut z, 1);
             self.load_forward = Some((load.to_vec(), z));
         }
-        let o = &*self.ordered;
-        let SymbolicCholeskyRaw::Supernodal(symbolic) = o.symbolic.raw() else {
-            return None;
-        };
+        let o = &*ordered;
         let updates = self.updates.as_ref()?;
         let (_, z_load) = self.load_forward.as_ref()?;
         let mut y = z_load.clone();

@@ -34,7 +34,7 @@ def pair(layout, length, deg, bridge):
     bridge runs from the first flaw's upper end to the second flaw's lower
     end: along the flaws (coplanar), up and slightly back, as in the bundled
     stepped pair (stepped), down across the flaws, as in the bundled
-    overlapping pair (overlapping: the second flaw on the side of the first
+    overlapping pair until 2026-11-28 (overlapping: the second flaw on the side of the first
     that its faces' slip makes a restraining step-over), or that direction
     reflected across the first flaw's line (overlapping, mirrored: a
     releasing step-over), or up and back at 120° to the horizontal

@@ -506,32 +506,41 @@ fn flaws_overlapping_across_the_load_coalesce() {
 
 /// Coalescence of overlapping flaws under the product's defaults (critical
 /// control, default criterion, secondary cracks): the bundled overlapping
-/// pair (100 × 100) and a held-out overlapping pair (two 3.4 mm flaws at
-/// 50°, the second 2.6 mm to the right and 1.5 mm below) link within 40
+/// pair (100 × 100; two 3 mm flaws at 45°, μ = 0.5, whose inner ends
+/// overlap across the load by 1.5 mm, the bridge one flaw length at 120°
+/// to the horizontal) and a held-out overlapping pair of the other
+/// step-over (two 3.4 mm flaws at 50°, the second 2.6 mm to the right and
+/// 1.5 mm below, overlapping along their length) each link within 40
 /// steps, every one converged (the grow report's `coalescence`).
 ///
-/// Ignored (issue 34): the bundled pair does not link before it splits
-/// (58 steps, `through`). Its inner ends' wings grow away from the strip
-/// between the flaws (the upper flaw's up, the lower flaw's down). On 150²
-/// and 200² it links only in the step that splits the specimen, in
-/// different places (not mesh-converged). Held-out overlapping pairs of
-/// the same handedness grown to failure link 7 of 8 (1 of 8 when the
-/// kinks' envelope had the faces' μ; docs/fracture-model.md, *Secondary
-/// cracks*).
+/// The bundled pair was drawn until 2026-11-28 with the second flaw below
+/// and to the right of the first, overlapping along their length (a
+/// restraining step-over of the faces' left-lateral slip, the bridge at
+/// −78°): a layout outside the experiments' overlapping flaws, and one
+/// that splits before it links on every mesh from 90 × 90 to 200 × 200
+/// (docs/fracture-model.md, *Growth to failure*).
 #[test]
-#[ignore = "issue 34: the bundled overlapping pair does not link before it splits (58 steps, grown to failure); 7 of 8 held-out overlapping pairs do (docs/fracture-model.md)"]
 fn overlapping_flaws_coalesce() {
     let text = include_str!("../../../assets/scenes/specimen_two_flaws_overlapping.json");
     let bundled = Scene::from_json(text).expect("scene").into_file();
     let held_out = flaw_pair((0.01391, 0.01537), [0.0026, -0.0015]);
+    let mut at = Vec::new();
     for (name, scene) in [("bundled", bundled), ("held out", held_out)] {
         let sim = grow_until_linked(name, scene, 40);
         let steps = sim.history().len();
-        assert!(
-            sim.coalescence().is_some(),
-            "{name}: no link in {steps} steps"
-        );
+        let c = sim
+            .coalescence()
+            .unwrap_or_else(|| panic!("{name}: no link in {steps} steps"));
+        at.push(format!("step {} ({})", c.step, c.category));
     }
+    verification_row(
+        "growth",
+        "overlapping_flaws_coalesce",
+        "overlapping flaw pairs link (bundled: overlapping across the load; held out: 3.4 mm at 50°, 2.6 mm right and 1.5 mm down), product defaults",
+        "100 × 100",
+        &format!("first link at {}, every step converged", at.join(" / ")),
+        "the flaws link",
+    );
 }
 
 /// Every growth step converges on a held-out overlapping pair grown to
@@ -1119,8 +1128,9 @@ fn growth_ends_when_the_specimen_is_split() {
 }
 
 /// Regression: growth that splits the specimen while other tips are still
-/// free ends `through`, with every step kept. The bundled overlapping flaws
-/// with the paper's soft joint on a 64 × 64 mesh: at step 38 the upper wing
+/// free ends `through`, with every step kept. Two 3 mm flaws at 45° side by
+/// side (the bundled overlapping pair as drawn until 2026-11-28), with the
+/// paper's soft joint on a 64 × 64 mesh: at step 38 the upper wing
 /// of crack 0 reaches the top (the lower one reached the bottom at step 40
 /// while a tip's interaction-integral domain could reach past the wing's
 /// kink), so crack 0 runs from the bottom to the
@@ -1137,6 +1147,10 @@ fn growth_ends_when_the_specimen_is_split() {
 #[test]
 fn growth_that_cuts_the_specimen_apart_ends_through() {
     let mut s = wings_only(bundled("specimen_two_flaws_overlapping"));
+    // the bundled pair as it was drawn when this was found (side by side,
+    // overlapping along their length)
+    s.cracks[0].points = Some(vec![[0.01253934, 0.01453934], [0.01466066, 0.01666066]]);
+    s.cracks[1].points = Some(vec![[0.01533934, 0.01333934], [0.01746066, 0.01546066]]);
     s.mesh.nx = 64;
     s.mesh.ny = 64;
     s.growth.max_steps = 45;

@@ -195,7 +195,7 @@ pub(super) fn eval_scalars(
 ) {
     let (n, dn) = mesh.shape(el.elem, x);
     // on the stack for the usual few enrichments: this runs per quadrature
-    // point, up to 20 000 times for one element
+    // point, thousands of times for one element
     let mut near = [EnrValue::default(); FEW_ENRICHMENTS];
     let many: Vec<EnrValue>;
     let ev: &[EnrValue] = if el.enrs.len() <= FEW_ENRICHMENTS {
@@ -246,7 +246,7 @@ pub(super) const STIFFNESS_BATCH: usize = 64;
 /// The moments of each batch of [`STIFFNESS_BATCH`] points (counted from
 /// the element's first point) are matrix products, `G_xx = (W G_x) G_xᵀ`,
 /// and each batch's block is added to `k` in turn: near a tip an element
-/// has up to 20 000 points.
+/// has thousands of points (up to 6 400 in the default scene's growth).
 pub(super) fn add_stiffness(
     mesh: &Mesh,
     funcs: &EnrichmentFunctions,

@@ -154,7 +154,7 @@ impl Xfem {
     /// Integrates the stiffness of the enriched elements still without one,
     /// over about `max_points` quadrature points (whole batches of
     /// `add_stiffness`, at least one: an element may take several calls,
-    /// near a tip one can have 20 000 points); returns whether all have
+    /// near a tip one can have thousands of points); returns whether all have
     /// their stiffness now. Whole elements are integrated on the machine's
     /// threads (natively; a browser has one). The result depends neither on
     /// `max_points` nor on the threads.

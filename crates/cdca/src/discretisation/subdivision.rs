@@ -20,12 +20,12 @@ pub const ORDER_CUT: usize = 3;
 /// of uncut ones near their tip), before [`refined_rule`] splits them:
 /// with [`ORDER_REFINED`] on the pieces it makes, ∫ 1/r over an element
 /// whose tip lies 0.001–0.3 h outside it is exact to 2e-7
-/// (`near_tip_rules_integrate_one_over_r`). Orders 8 and 6 took 1.4 times
-/// the points for K within 6.2e-8 of |K| at 53 generic tip positions,
-/// against 5e-6–1.3e-3 between tip-fan orders ([`ORDER_TIP`]) 10 and
-/// 12–20: the tip's own rule is the quadrature error that counts. Order 4
-/// on the refined pieces left the crack-parallel patch test at 1.3e-5
-/// instead of 2e-6.
+/// (`near_tip_rules_integrate_one_over_r`). The orders before, 8 and 6,
+/// took 1.4 times the points; against them K moves by at most 6.2e-8 of
+/// |K| at 53 generic tip positions, where tip-fan orders ([`ORDER_TIP`])
+/// 10 and 12–20 differ by 5e-6–1.3e-3: the tip's own rule is the
+/// quadrature error that counts. Order 4 on the refined pieces left the
+/// crack-parallel patch test at 1.3e-5 instead of 2e-6.
 pub const ORDER_CUT_TIP_ENRICHED: usize = 6;
 /// Collapsed order on triangles fanned from a tip.
 pub const ORDER_TIP: usize = 10;

@@ -428,7 +428,13 @@ impl Factor {
             c.adjust_forward(&mut y);
         }
         self.backward(&mut y, 1);
-        let u: Vec<f64> = o.inv.iter().map(|&i| y[i]).collect();
+        self.solution(&y)
+    }
+
+    /// The solution by DOF from the reordered solution `y`; an error names
+    /// the first DOF that is not finite.
+    fn solution(&self, y: &[f64]) -> Result<Vec<f64>, SolveError> {
+        let u: Vec<f64> = self.ordered.inv.iter().map(|&i| y[i]).collect();
         if let Some(i) = u.iter().position(|v| !v.is_finite()) {
             return Err(SolveError::NonFinite {
                 place: format!("direct solution, DOF {i}"),
@@ -509,14 +515,7 @@ impl Factor {
     pub fn complete(&self, mut partial: Partial) -> Result<Vec<f64>, SolveError> {
         let done = std::mem::take(&mut partial.done);
         self.backward_on(&mut partial.y, |s| !done[s]);
-        let o = &*self.ordered;
-        let u: Vec<f64> = o.inv.iter().map(|&i| partial.y[i]).collect();
-        if let Some(i) = u.iter().position(|v| !v.is_finite()) {
-            return Err(SolveError::NonFinite {
-                place: format!("direct solution, DOF {i}"),
-            });
-        }
-        Ok(u)
+        self.solution(&partial.y)
     }
 
     /// `y ← L⁻ᵀ y` on the supernodes `take` selects, from the last down (as

@@ -4,8 +4,8 @@
 
 use std::path::{Path, PathBuf};
 
-use cdca::report::{GrowReport, Outcome};
-use cdca::{Simulation, SolveError};
+use cdca::SolveError;
+use cdca::report::GrowReport;
 
 use crate::error::CliError;
 use crate::{output, scene_file};
@@ -22,7 +22,7 @@ pub struct Args {
 
 pub fn run(args: &Args) -> Result<(), CliError> {
     let mut sim = scene_file::simulation(&args.scene)?;
-    let (report, failed) = grow(&mut sim, |sim| sim.grow_step().map(drop));
+    let (report, failed) = sim.grow_to_end();
     if let Some(dir) = &args.csv {
         write_csv(dir, &report)?;
     }
@@ -75,37 +75,6 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         ))),
         None => Ok(()),
     }
-}
-
-/// Runs `step` (one growth step) until growth ends, or until a step fails:
-/// then the report holds the steps before it, outcome `error` and the
-/// message naming the step; the error is returned too, for the exit code.
-fn grow(
-    sim: &mut Simulation,
-    mut step: impl FnMut(&mut Simulation) -> Result<(), SolveError>,
-) -> (GrowReport, Option<SolveError>) {
-    let mut failed = None;
-    let outcome = loop {
-        if let Some(outcome) = sim.growth_finished() {
-            break outcome;
-        }
-        if let Err(e) = step(sim) {
-            failed = Some(e);
-            break Outcome::Error;
-        }
-    };
-    // the scene's `growth.resume.steps` counts the steps done, this run's
-    // and any before it
-    let next = sim.scene().growth.resume.as_ref().map_or(0, |r| r.steps) + 1;
-    let report = GrowReport {
-        steps: sim.history().to_vec(),
-        outcome,
-        cracks: sim.cracks(),
-        error: failed.as_ref().map(|e| format!("step {next}: {e}")),
-        load_cap: sim.load_cap(),
-        coalescence: sim.coalescence(),
-    };
-    (report, failed)
 }
 
 fn write_csv(dir: &Path, report: &GrowReport) -> Result<(), CliError> {

@@ -164,6 +164,48 @@ pub struct StartedCrack {
     pub off_arm_deg: f64,
 }
 
+/// A crack started in the intact rock in a growth step (SPEC §8,
+/// `growth.intact_rock = "nucleate"`): at the site whose disc reading of
+/// the rock's Mohr–Coulomb envelope with its tension cut-off met it first.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct NucleatedCrack {
+    /// Index of the new crack (appended to the scene's `cracks`).
+    pub crack: usize,
+    /// The site: the centre of the element it started at, m.
+    pub x: f64,
+    pub y: f64,
+    /// Its two ends after the step, m.
+    pub ends: [[f64; 2]; 2],
+    /// `tension` (perpendicular to the most tensile principal stress) or
+    /// `shear` (on a Mohr–Coulomb plane, 45° − φ/2 from σ1).
+    pub mode: Mode,
+    /// Direction of the crack's line, degrees counter-clockwise from +x,
+    /// in (−90, 90].
+    pub direction_deg: f64,
+    /// The site's utilisation at the step's load (≥ 1).
+    pub utilisation: f64,
+    /// Other sites tied with it (within the λ search's band), which the
+    /// tie rule passed over.
+    pub tied: usize,
+}
+
+/// The most critical site of the intact rock at a step's load: where a
+/// crack would start first (SPEC §8).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct RockSiteReport {
+    /// The site (an element's centre), m.
+    pub x: f64,
+    pub y: f64,
+    /// The disc reading's utilisation `max((σ1 − N_φ σ3)/σ_c, −σ3/σ_t)`
+    /// (≥ 1: a crack starts here unless a tip or a kink grows).
+    pub utilisation: f64,
+    /// Which check decides (`tension` or `shear`; `none` below 1).
+    pub mode: Mode,
+    /// Sites the reading covered (none within r0 of a crack's faces or a
+    /// point support, 2 r0 of a free tip or a kink, or on a loose piece).
+    pub sites: usize,
+}
+
 /// A grown tip that ended on another crack in a growth step (a
 /// junction): what it joins. Two cracks that belong to different flaws
 /// (each crack belongs to the flaw it grew from) have coalesced.
@@ -384,6 +426,54 @@ pub struct GrowReport {
     /// none did).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub coalescence: Option<CoalescenceReport>,
+    /// The specimen's strength, the peak of the load factor, against the
+    /// intact rock's at the same load ratio (left out with no step).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub strength: Option<StrengthReport>,
+    /// The bound on cracks started in the intact rock at one load stopped
+    /// the run (outcome `unstable`; left out otherwise).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub start_limit: Option<StartLimitReport>,
+}
+
+/// The specimen's strength (SPEC §8): the peak of the recorded load
+/// factors, as in a load-controlled test, against the load factor at
+/// which the uncracked specimen's intact rock fails under the same loads.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct StrengthReport {
+    /// The step with the largest load factor, and that load factor.
+    pub peak_step: usize,
+    pub peak_load_factor: f64,
+    /// The scene's reference stress: the largest magnitude of a side's
+    /// normal traction, Pa (`λ` times it is the load shown).
+    pub reference_stress: f64,
+    /// `peak_load_factor` × `reference_stress`, Pa.
+    pub peak_stress: f64,
+    /// Load factor at which the uncracked specimen's rock first meets its
+    /// envelope (the largest disc reading reaches 1); `None` when it never
+    /// does at this load ratio (confinement with k N_φ ≥ 1, or a rock
+    /// without cohesion).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub intact_load_factor: Option<f64>,
+    /// `peak_load_factor / intact_load_factor`: below 1 the flaws weaken
+    /// the specimen.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ratio: Option<f64>,
+    /// The comparison in words (and why there is none, when there is none).
+    pub note: String,
+}
+
+/// Cracks started in the intact rock at one load, up to the bound: the
+/// rock fails there at a load that does not rise, so the specimen has
+/// reached its peak and the run stops (outcome `unstable`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct StartLimitReport {
+    /// The load factor (within the λ search's band) of the starts.
+    pub load_factor: f64,
+    /// Starts at that load.
+    pub starts: usize,
+    /// What stopped the run, in words.
+    pub reason: String,
 }
 
 /// A growth run stopped by `growth.max_load_factor` (critical control).
@@ -486,6 +576,13 @@ pub struct GrowthStepReport {
     /// Every kink evaluated at this step's load (left out when none).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub kinks: Vec<KinkReport>,
+    /// Cracks started in the intact rock in this step (left out when none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub nucleated: Vec<NucleatedCrack>,
+    /// The intact rock's most critical site at this step's load (left out
+    /// under `growth.intact_rock = "ignore"` and where no site is left).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rock_site: Option<RockSiteReport>,
 }
 
 /// A tip that grew in a step: its new position and how it grew.

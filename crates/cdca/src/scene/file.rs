@@ -287,34 +287,104 @@ pub enum GrowthControl {
     Critical,
 }
 
+/// How the intact rock between the cracks fails (SPEC §8,
+/// `growth.intact_rock`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum IntactRock {
+    /// Where the rock's Mohr–Coulomb envelope with its tension cut-off,
+    /// read over a disc of radius r0, is met below every tip's and kink's
+    /// load, a new crack starts there (`fracture::sites`).
+    #[default]
+    Nucleate,
+    /// The paper's model: only crack tips and kinks grow; the rock between
+    /// them never fails.
+    Ignore,
+}
+
+impl IntactRock {
+    /// As in the scene file: `"nucleate"`, `"ignore"`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Nucleate => "nucleate",
+            Self::Ignore => "ignore",
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(from = "GrowthFields")]
 pub struct GrowthSpec {
-    #[serde(default)]
     pub control: GrowthControl,
     /// Growth increment Δa, m; `None` means `max(r0, 3h)` with the scene's
     /// r0 (`r_p` when `criterion.r0` is not given), the same for every crack.
-    #[serde(default)]
     pub increment: Option<f64>,
-    #[serde(default = "default_load_steps")]
     pub load_steps: usize,
-    #[serde(default = "default_max_growth_per_step")]
     pub max_growth_per_step: usize,
-    #[serde(default = "default_max_steps")]
     pub max_steps: usize,
     /// With critical control, growth ends (`completed`) when λ_cr would
     /// exceed this factor of the scene's loads.
-    #[serde(default = "default_max_load_factor")]
     pub max_load_factor: f64,
     /// Whether a crack's sharp kinks are sites of the criterion, where
     /// secondary cracks start (SPEC §8; `fracture::kinks`). `false`: only
     /// free tips grow, so a flaw grows its wings alone (as before secondary
     /// cracks existed; for teaching wing cracks, or to compare).
-    #[serde(default = "yes", skip_serializing_if = "is_true")]
+    #[serde(skip_serializing_if = "is_true")]
     pub secondary_cracks: bool,
+    /// Whether the intact rock fails (SPEC §8). Always written. A file
+    /// without it reads `"nucleate"`, except one that resumes a saved run
+    /// (`resume` given), which reads `"ignore"`: a run saved before the
+    /// field existed continues as it would have.
+    pub intact_rock: IntactRock,
     /// Where a run saved mid-way stands; `None` in a scene not yet grown.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub resume: Option<super::Resume>,
+}
+
+/// [`GrowthSpec`] as read from a file, before `intact_rock`'s default is
+/// resolved (it depends on whether the file resumes a run).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GrowthFields {
+    #[serde(default)]
+    control: GrowthControl,
+    #[serde(default)]
+    increment: Option<f64>,
+    #[serde(default = "default_load_steps")]
+    load_steps: usize,
+    #[serde(default = "default_max_growth_per_step")]
+    max_growth_per_step: usize,
+    #[serde(default = "default_max_steps")]
+    max_steps: usize,
+    #[serde(default = "default_max_load_factor")]
+    max_load_factor: f64,
+    #[serde(default = "yes")]
+    secondary_cracks: bool,
+    #[serde(default)]
+    intact_rock: Option<IntactRock>,
+    #[serde(default)]
+    resume: Option<super::Resume>,
+}
+
+impl From<GrowthFields> for GrowthSpec {
+    fn from(g: GrowthFields) -> Self {
+        let intact_rock = g.intact_rock.unwrap_or(if g.resume.is_some() {
+            IntactRock::Ignore
+        } else {
+            IntactRock::Nucleate
+        });
+        Self {
+            control: g.control,
+            increment: g.increment,
+            load_steps: g.load_steps,
+            max_growth_per_step: g.max_growth_per_step,
+            max_steps: g.max_steps,
+            max_load_factor: g.max_load_factor,
+            secondary_cracks: g.secondary_cracks,
+            intact_rock,
+            resume: g.resume,
+        }
+    }
 }
 
 impl Default for GrowthSpec {
@@ -327,6 +397,7 @@ impl Default for GrowthSpec {
             control: GrowthControl::default(),
             max_load_factor: default_max_load_factor(),
             secondary_cracks: true,
+            intact_rock: IntactRock::Nucleate,
             resume: None,
         }
     }

@@ -17,8 +17,8 @@ mod validate;
 pub use criterion::{Criterion, CriterionFields};
 pub use file::{
     ArcSpec, Boundary, ContactUpdate, CrackSpec, CriterionKind, CriterionSpec, DIRECT_TOLERANCE,
-    Fix, GrowthControl, GrowthSpec, Material, MeshSpec, Ordering, Plane, PointSupport, Sampling,
-    SceneFile, ShearStrength, SideBc, SolverKind, SolverSpec, Specimen,
+    Fix, GrowthControl, GrowthSpec, IntactRock, Material, MeshSpec, Ordering, Plane, PointSupport,
+    Sampling, SceneFile, ShearStrength, SideBc, SolverKind, SolverSpec, Specimen,
 };
 pub use resume::{Lineage, Part, Resume};
 pub use valid::Scene;

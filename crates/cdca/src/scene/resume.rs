@@ -48,8 +48,9 @@ pub struct Resume {
 
 /// What a part of a crack is (Park & Bobet 2009, Wong & Einstein 2009):
 /// the flaw as drawn, a wing (grown from a flaw's end, first in tension),
-/// or a secondary crack (started at a kink, or grown from a flaw's end
-/// first in shear).
+/// a secondary crack (started at a kink, or grown from a flaw's end first
+/// in shear), or a crack started in the intact rock (SPEC §8,
+/// `growth.intact_rock`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Part {
@@ -57,30 +58,36 @@ pub enum Part {
     Flaw,
     Wing,
     Secondary,
+    Intact,
 }
 
 impl Part {
-    /// As serialised: `"flaw"`, `"wing"`, `"secondary"`.
+    /// As serialised: `"flaw"`, `"wing"`, `"secondary"`, `"intact"`.
     pub const fn name(self) -> &'static str {
         match self {
             Self::Flaw => "flaw",
             Self::Wing => "wing",
             Self::Secondary => "secondary",
+            Self::Intact => "intact",
         }
     }
 }
 
 /// What the parts of one crack's polyline are: the drawn polyline (the
 /// flaw), and what grew at each of its ends; or, for a crack started at
-/// another crack's kink, a secondary crack throughout.
+/// another crack's kink, a secondary crack throughout; or, for a crack
+/// started in the intact rock, such a crack throughout (its own group:
+/// `flaw` is its own index).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Lineage {
-    /// The drawn crack it belongs to (itself when drawn).
+    /// The drawn crack it belongs to (itself when drawn, and for a crack
+    /// started in the intact rock).
     pub flaw: usize,
     /// Points grown at its first end, before the drawn polyline.
     pub front: usize,
-    /// Points of the drawn polyline; 0 for a secondary crack.
+    /// Points of the drawn polyline; 0 for a crack started at a kink or
+    /// in the intact rock.
     pub drawn: usize,
     /// What grew at each end (`flaw`: nothing yet).
     pub ends: [Part; 2],
@@ -107,15 +114,31 @@ impl Lineage {
         }
     }
 
+    /// Crack `own`, started in the intact rock: a group of its own.
+    pub fn intact(own: usize) -> Self {
+        Self {
+            flaw: own,
+            front: 0,
+            drawn: 0,
+            ends: [Part::Intact; 2],
+        }
+    }
+
     /// Whether the crack started at another crack's kink.
     pub fn is_secondary(&self) -> bool {
-        self.drawn == 0
+        self.drawn == 0 && self.ends[0] == Part::Secondary
+    }
+
+    /// Whether the crack started in the intact rock.
+    pub fn is_intact(&self) -> bool {
+        self.drawn == 0 && self.ends[0] == Part::Intact
     }
 
     /// The part segment `j` (from point `j` to `j + 1`) belongs to.
     pub fn part_of_segment(&self, j: usize) -> Part {
-        if self.is_secondary() {
-            Part::Secondary
+        if self.drawn == 0 {
+            // started at a kink or in the intact rock: one part throughout
+            self.ends[0]
         } else if j < self.front {
             self.ends[0]
         } else if j + 1 >= self.front + self.drawn {

@@ -14,8 +14,8 @@ use crate::fracture::tips::TipDomains;
 use crate::geometry::cracks::{Crack, TipKind, classify_tips, root, split_specimen};
 use crate::geometry::plane::{P2, distance_to_segment};
 use crate::report::{
-    CoalescenceReport, ContactCounts, GrownTip, GrowthStepReport, KinkReport, LinkReport,
-    LoadCapReport, Mode, Outcome, SolveReport, StartedCrack, TipReport,
+    ContactCounts, GrownTip, GrowthStepReport, KinkReport, LinkReport, Mode, Outcome, SolveReport,
+    StartedCrack, TipReport,
 };
 use crate::scene::{CrackSpec, GrowthControl, Lineage, Resume, SolverKind};
 
@@ -40,7 +40,7 @@ impl Simulation {
     }
 
     /// Whether the scene asks for critical control (SPEC §9).
-    fn critical_control(&self) -> bool {
+    pub(super) fn critical_control(&self) -> bool {
         self.model.scene.growth.control == GrowthControl::Critical
     }
 
@@ -512,29 +512,6 @@ impl Simulation {
     /// Whether growth has ended (through, unstable, max steps, completed).
     pub fn growth_finished(&self) -> Option<Outcome> {
         self.state.outcome
-    }
-
-    /// Under critical control, a run ended `completed`: the λ_cr search
-    /// reached `growth.max_load_factor` with no free tip meeting its
-    /// criterion, so the cap stopped it.
-    pub fn load_cap(&self) -> Option<LoadCapReport> {
-        (self.critical_control() && self.state.outcome == Some(Outcome::Completed))
-            .then(|| LoadCapReport::at(self.model.scene.growth.max_load_factor))
-    }
-
-    /// The first link between two flaws in this run's history, if any.
-    pub fn coalescence(&self) -> Option<CoalescenceReport> {
-        self.state.history.iter().find_map(|s| {
-            s.links
-                .iter()
-                .find(|l| l.coalescence)
-                .map(|l| CoalescenceReport {
-                    step: s.step,
-                    load_factor: s.load_factor,
-                    category: l.category(),
-                    flaws: l.flaws,
-                })
-        })
     }
 
     /// What each crack's parts are (flaw, wing, secondary).

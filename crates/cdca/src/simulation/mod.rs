@@ -21,6 +21,7 @@ mod grow;
 mod initiation;
 mod job;
 mod relax;
+mod run;
 mod search;
 mod solve;
 mod state;

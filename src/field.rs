@@ -285,7 +285,8 @@ pub fn value_range(values: &[f64], clip: bool) -> Option<(f64, f64)> {
 mod tests {
     use super::*;
 
-    /// Plane stress, ν = 0.25, σ_c = 50 MPa, N_φ = 3, σ_t = 5 MPa.
+    /// Plane stress, ν = 0.25, σ_c = 50 MPa, N_φ = 3 (φ = 30°), σ_t =
+    /// 5 MPa (c = σ_c/2√N_φ = 14.43 MPa).
     fn rock() -> Rock {
         Rock {
             plane: Plane::Stress,
@@ -294,6 +295,8 @@ mod tests {
                 ucs: 50e6,
                 n_phi: 3.0,
                 tensile: 5e6,
+                cohesion: 50e6 / (2.0 * 3f64.sqrt()),
+                friction_angle: 30f64.to_radians(),
             }),
         }
     }

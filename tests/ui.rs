@@ -2157,6 +2157,7 @@ fn a_flaw_end_grown_in_shear_is_drawn_as_a_secondary_crack() {
             drawn: flaw.len(),
             ends: [Part::Secondary, Part::Wing],
         }],
+        rock_starts: None,
     });
     let mut h = opened_unsolved("sheared_end.json", scene.to_json().expect("JSON"));
     assert!(h.state().message().is_none(), "{:?}", h.state().message());

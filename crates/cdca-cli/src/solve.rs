@@ -26,7 +26,11 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         report.other_solution = OtherSolutionReport::between(&report, &second, "bonded");
     }
     output::print_json(&report)?;
-    output::note_intact_rock("at full load", report.intact_rock.as_ref());
+    output::note_intact_rock(
+        "at full load",
+        report.intact_rock.as_ref(),
+        sim.scene().growth.intact_rock,
+    );
     if let Some(o) = &report.other_solution {
         eprintln!("cdca: note: {}", o.sentence(&report.contact));
     }

@@ -99,25 +99,30 @@ pub fn sharp_kinks(cracks: &[Crack], tol: f64) -> Vec<Kink> {
                 .map(|k| c.tip_point(k))
         })
         .collect();
-    let mut out = Vec::new();
-    for (c, crack) in cracks.iter().enumerate() {
-        let p = &crack.points;
-        for i in 1..p.len().saturating_sub(1) {
-            let (back, ahead) = ((p[i - 1] - p[i]).normalize(), (p[i + 1] - p[i]).normalize());
-            // the turn: 0 for a straight polyline, 180° for one that folds back
-            let turn = (PI - back.dot(&ahead).clamp(-1.0, 1.0).acos()).to_degrees();
-            if turn >= SHARP_TURN_DEG && starts.iter().all(|&s| (s - p[i]).norm() > tol) {
-                out.push(Kink {
-                    crack: c,
-                    vertex: i,
-                    point: p[i],
-                    arms: [back, ahead],
-                    turn_deg: turn,
-                });
-            }
-        }
-    }
-    out
+    cracks
+        .iter()
+        .enumerate()
+        .flat_map(|(c, crack)| sharp_vertices(c, crack))
+        .filter(|k| starts.iter().all(|&s| (s - k.point).norm() > tol))
+        .collect()
+}
+
+/// Every vertex of crack `c` (`crack`) at which it turns by at least
+/// [`SHARP_TURN_DEG`], whether or not a crack has started there.
+pub fn sharp_vertices(c: usize, crack: &Crack) -> impl Iterator<Item = Kink> + '_ {
+    let p = &crack.points;
+    (1..p.len().saturating_sub(1)).filter_map(move |i| {
+        let (back, ahead) = ((p[i - 1] - p[i]).normalize(), (p[i + 1] - p[i]).normalize());
+        // the turn: 0 for a straight polyline, 180° for one that folds back
+        let turn = (PI - back.dot(&ahead).clamp(-1.0, 1.0).acos()).to_degrees();
+        (turn >= SHARP_TURN_DEG).then_some(Kink {
+            crack: c,
+            vertex: i,
+            point: p[i],
+            arms: [back, ahead],
+            turn_deg: turn,
+        })
+    })
 }
 
 /// σ_θθ and τ_rθ on the circle of radius `r` around the kink, over its

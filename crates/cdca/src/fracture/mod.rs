@@ -13,4 +13,5 @@ pub mod growth;
 pub mod kinks;
 pub mod rock;
 pub mod sif;
+pub mod sites;
 pub mod tips;

@@ -21,6 +21,9 @@ pub struct RockStrength {
     /// Tensile strength σ_t, Pa: the material's `tensile_strength`, else
     /// the Mohr–Coulomb cut-off `2c cos φ / (1 + sin φ)`.
     pub tensile: f64,
+    /// Cohesion c, Pa, and friction angle φ, rad.
+    pub cohesion: f64,
+    pub friction_angle: f64,
 }
 
 impl RockStrength {
@@ -34,6 +37,8 @@ impl RockStrength {
             ucs: 2.0 * c * phi.cos() / (1.0 - phi.sin()),
             n_phi: (1.0 + phi.sin()) / (1.0 - phi.sin()),
             tensile: m.tensile_strength.unwrap_or_else(|| tension_cutoff(c, phi)),
+            cohesion: c,
+            friction_angle: phi,
         };
         (s.ucs > 0.0 && s.tensile > 0.0).then_some(s)
     }
@@ -46,13 +51,23 @@ impl RockStrength {
     /// `σ3 N_φ ≥ σ1`). Scales with the stress, so `u(λ) = λ u(1)` for a
     /// linear response.
     pub fn utilisation(&self, s: [f64; 3]) -> f64 {
+        let (tension, shear) = self.ratios(s);
+        shear.max(tension).max(0.0)
+    }
+
+    /// The envelope's two checks on the stress `[σxx, σyy, τxy]` (Pa,
+    /// tension positive): the tension cut-off `−σ3/σ_t` and the
+    /// Mohr–Coulomb line `(σ1 − N_φ σ3)/σ_c` (principal compressions
+    /// σ1 ≥ σ3, compression positive), each 1 on its part of the envelope.
+    pub fn ratios(&self, s: [f64; 3]) -> (f64, f64) {
         let centre = 0.5 * (s[0] + s[1]);
         let radius = (0.25 * (s[0] - s[1]).powi(2) + s[2] * s[2]).sqrt();
         // compression positive: σ1 the larger compression
         let (sigma1, sigma3) = (radius - centre, -radius - centre);
-        ((sigma1 - self.n_phi * sigma3) / self.ucs)
-            .max(-sigma3 / self.tensile)
-            .max(0.0)
+        (
+            -sigma3 / self.tensile,
+            (sigma1 - self.n_phi * sigma3) / self.ucs,
+        )
     }
 }
 

@@ -20,7 +20,7 @@ pub use file::{
     Fix, GrowthControl, GrowthSpec, IntactRock, Material, MeshSpec, Ordering, Plane, PointSupport,
     Sampling, SceneFile, ShearStrength, SideBc, SolverKind, SolverSpec, Specimen,
 };
-pub use resume::{Lineage, Part, Resume};
+pub use resume::{Lineage, Part, Resume, RockStarts};
 pub use valid::Scene;
 pub(crate) use validate::fmt_point;
 pub use validate::{MAX_ELEMENTS, MIN_END_SEGMENT};

@@ -44,6 +44,24 @@ pub struct Resume {
     /// drawn.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub lineage: Vec<Lineage>,
+    /// The run's peak load factor so far, and the cracks started in the
+    /// intact rock at a load not above it since it was last raised (the
+    /// bound on starts at one load counts them; written under
+    /// `growth.intact_rock = "nucleate"` only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rock_starts: Option<RockStarts>,
+}
+
+/// Cracks started in the intact rock at one load (see
+/// [`Resume::rock_starts`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RockStarts {
+    /// The largest load factor of a step that grew or started a crack.
+    pub peak: f64,
+    /// Starts at a load factor within the λ search's band of `peak` or
+    /// below it, since `peak` was last raised.
+    pub at_peak: usize,
 }
 
 /// What a part of a crack is (Park & Bobet 2009, Wong & Einstein 2009):
@@ -201,6 +219,15 @@ impl Resume {
                 format!("growth.resume.lineage[{i}].flaw"),
                 l.flaw,
                 format!("must name one of the {cracks} cracks"),
+            ));
+        }
+        if let Some(s) = self.rock_starts
+            && !(s.peak.is_finite() && s.peak >= 0.0)
+        {
+            return Err(SceneError::invalid(
+                "growth.resume.rock_starts.peak",
+                s.peak,
+                "must be a finite number ≥ 0",
             ));
         }
         let lambda = self.load_factor;

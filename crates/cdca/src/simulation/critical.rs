@@ -14,14 +14,14 @@ use crate::report::GrowthStepReport;
 
 impl Simulation {
     /// Largest utilisation over the free tips and the kinks of the last
-    /// solve (0 with neither).
+    /// solve, and the intact rock's sites (0 with none).
     pub(super) fn utilisation(&self) -> f64 {
         self.scratch
             .utilisation
             .iter()
             .chain(&self.scratch.kink_utilisation)
             .copied()
-            .fold(0.0, f64::max)
+            .fold(self.rock_utilisation(), f64::max)
     }
 
     /// Starts a critical-control step: the first trial at the last step's
@@ -193,6 +193,7 @@ impl Simulation {
             utilisation: self.scratch.utilisation.clone(),
             kinks: self.scratch.kinks.clone(),
             kink_utilisation: self.scratch.kink_utilisation.clone(),
+            rock: self.scratch.rock.clone(),
             contact: self.scratch.contact.clone(),
             residual: self.scratch.residual.clone(),
         }
@@ -209,6 +210,7 @@ impl Simulation {
         self.scratch.utilisation = s.utilisation;
         self.scratch.kinks = s.kinks;
         self.scratch.kink_utilisation = s.kink_utilisation;
+        self.scratch.rock = s.rock;
         self.scratch.contact = s.contact;
         self.scratch.residual = s.residual;
         self.scratch.job = None;

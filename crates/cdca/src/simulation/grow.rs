@@ -4,18 +4,20 @@
 
 use web_time::Instant;
 
+use super::run::Groups;
 use super::search::{MAX_TRIALS, Trials};
 use super::state::Simulation;
 use crate::contact::law::{FaceState, carry_over, counts};
 use crate::discretisation::xfem::Reuse;
 use crate::error::SolveError;
 use crate::fracture::growth::{Extension, apply, default_increment, extend, extend_from};
+use crate::fracture::sites::Start;
 use crate::fracture::tips::TipDomains;
-use crate::geometry::cracks::{Crack, TipKind, classify_tips, root, split_specimen};
+use crate::geometry::cracks::{Crack, TipKind, classify_tips, split_specimen};
 use crate::geometry::plane::{P2, distance_to_segment};
 use crate::report::{
-    ContactCounts, GrownTip, GrowthStepReport, KinkReport, LinkReport, Mode, Outcome, SolveReport,
-    StartedCrack, TipReport,
+    ContactCounts, GrownTip, GrowthStepReport, KinkReport, LinkReport, Mode, NucleatedCrack,
+    Outcome, SolveReport, StartedCrack, TipReport,
 };
 use crate::scene::{CrackSpec, GrowthControl, Lineage, Resume, SolverKind};
 
@@ -42,6 +44,19 @@ impl Simulation {
     /// Whether the scene asks for critical control (SPEC §9).
     pub(super) fn critical_control(&self) -> bool {
         self.model.scene.growth.control == GrowthControl::Critical
+    }
+
+    /// The growth increment Δa, m: `growth.increment`, else
+    /// [`default_increment`] of the scene's r0.
+    pub(super) fn increment(&self) -> f64 {
+        self.model
+            .scene
+            .growth
+            .increment
+            .unwrap_or(default_increment(
+                self.criterion_params().r0,
+                self.model.mesh.h(),
+            ))
     }
 
     /// Load factor of the growth loop's current increment.
@@ -169,15 +184,7 @@ impl Simulation {
         let critical = self.critical_control();
         let g = &self.model.scene.growth;
         let (load_steps, max_here, max_steps) = (g.load_steps, g.max_growth_per_step, g.max_steps);
-        let da = self
-            .model
-            .scene
-            .growth
-            .increment
-            .unwrap_or(default_increment(
-                self.criterion_params().r0,
-                self.model.mesh.h(),
-            ));
+        let da = self.increment();
         let growing: Vec<TipReport> = report
             .tips
             .iter()
@@ -190,7 +197,14 @@ impl Simulation {
             .filter(|k| k.mode != Mode::None)
             .cloned()
             .collect();
-        let nothing = growing.is_empty() && starting.is_empty();
+        // tips and kinks beat the intact rock: a crack starts there only
+        // in a step where none of them grows
+        let rock = if growing.is_empty() && starting.is_empty() {
+            self.rock_start(da)
+        } else {
+            None
+        };
+        let nothing = growing.is_empty() && starting.is_empty() && rock.is_none();
         let mut step = GrowthStepReport {
             step: self.steps_done() + 1,
             load_factor: self.state.lambda,
@@ -220,6 +234,7 @@ impl Simulation {
             cold_trials: trials.cold.to_vec(),
             scaled_trials: trials.scaled.to_vec(),
             kinks: report.kinks.clone(),
+            rock_site: self.rock_site(),
             ..GrowthStepReport::default()
         };
         if !step.converged {
@@ -228,7 +243,7 @@ impl Simulation {
             if nothing {
                 self.state.outcome = Some(Outcome::Completed);
             } else {
-                self.grow_tips(&growing, &starting, da, &mut step);
+                self.grow_tips(&growing, &starting, rock, da, &mut step);
             }
         } else if nothing {
             self.state.increment += 1;
@@ -238,12 +253,14 @@ impl Simulation {
             }
         } else {
             self.state.growths_here += 1;
-            self.grow_tips(&growing, &starting, da, &mut step);
+            self.grow_tips(&growing, &starting, rock, da, &mut step);
             if self.state.growths_here >= max_here {
                 self.state.outcome = Some(Outcome::Unstable);
             }
         }
-        if !(step.grown.is_empty() && step.started.is_empty()) && split_specimen(&self.state.cracks)
+        let bound = self.count_rock_starts(&step);
+        if !(step.grown.is_empty() && step.started.is_empty() && step.nucleated.is_empty())
+            && split_specimen(&self.state.cracks)
         {
             // a chain of cracks from boundary to boundary: the specimen
             // has failed, whether or not contact still holds its pieces
@@ -260,6 +277,10 @@ impl Simulation {
             if !self.state.cracks.is_empty() && (any_boundary || critical) {
                 self.state.outcome = Some(Outcome::Through);
             }
+        }
+        if let Some(limit) = bound.filter(|_| self.state.outcome.is_none()) {
+            self.state.outcome = Some(Outcome::Unstable);
+            self.state.start_limit = Some(limit);
         }
         if self.state.outcome.is_none() && step.step >= max_steps {
             self.state.outcome = Some(Outcome::MaxSteps);
@@ -282,17 +303,21 @@ impl Simulation {
             faces: self.state.faces.iter().map(FaceState::saved).collect(),
             grown: Vec::new(),
             lineage: self.state.lineage.clone(),
+            rock_starts: self.rock_strength().map(|_| self.state.rock_starts),
         }
     }
 
     /// Extends the growing tips and starts a secondary crack at each kink
-    /// that meets the criterion (all from the same solution), records them
-    /// and the links they make in `step`, and rebuilds the discretisation,
-    /// carrying contact states and displacement over.
+    /// that meets the criterion (all from the same solution), or starts the
+    /// crack `rock` in the intact rock (with its site's utilisation and the
+    /// number of sites tied with it), records them and the links they make
+    /// in `step`, and rebuilds the discretisation, carrying contact states
+    /// and displacement over.
     fn grow_tips(
         &mut self,
         growing: &[TipReport],
         starting: &[KinkReport],
+        rock: Option<(Start, f64, usize)>,
         da: f64,
         step: &mut GrowthStepReport,
     ) {
@@ -382,35 +407,101 @@ impl Simulation {
                 off_arm_deg: k.off_arm_deg,
             });
         }
+        if let Some((start, utilisation, tied)) = rock {
+            let crack = self.state.cracks.len();
+            let ends = [-1.0, 1.0].map(|side| {
+                extend_from(
+                    &self.state.cracks,
+                    None,
+                    start.point,
+                    start.direction * side,
+                    start.half_length,
+                    width,
+                    height,
+                    start.snap,
+                )
+            });
+            let (a, b) = (ends[0].point(), ends[1].point());
+            moved.extend([a, b]);
+            let m = &self.model.scene.material;
+            let kn = 100.0 * m.young / snap;
+            self.state.cracks.push(Crack {
+                points: vec![a, b],
+                tips: [TipKind::Free; 2],
+                friction: m.friction_angle_deg.to_radians().tan(),
+                cohesion: 0.0,
+                kn,
+                kt: 0.1 * kn,
+            });
+            self.state.lineage.push(Lineage::intact(crack));
+            for (tip, e) in ends.into_iter().enumerate() {
+                if let Extension::Junction(p, main) = e {
+                    links.push((crack, tip, main, p));
+                }
+            }
+            let d = start.direction;
+            // the line's direction in (−90°, 90°]
+            let deg = d.y.atan2(d.x).to_degrees();
+            let deg = if deg > 90.0 {
+                deg - 180.0
+            } else if deg <= -90.0 {
+                deg + 180.0
+            } else {
+                deg
+            };
+            step.nucleated.push(NucleatedCrack {
+                crack,
+                x: start.point.x,
+                y: start.point.y,
+                ends: [[a.x, a.y], [b.x, b.y]],
+                mode: start.mode,
+                direction_deg: deg,
+                utilisation,
+                tied,
+            });
+        }
         classify_tips(&mut self.state.cracks, width, height, 1e-9 * snap);
         for (crack, tip, main, p) in links {
-            step.links.push(self.link(crack, tip, main, p));
+            // a crack started in the intact rock may end on two cracks in
+            // its step: its second link sees its first
+            let earlier = if self.state.lineage[crack].is_intact() {
+                step.links.as_slice()
+            } else {
+                &[]
+            };
+            let link = self.link(crack, tip, main, p, earlier);
+            step.links.push(link);
         }
         self.rebuild(moved);
     }
 
     /// What the junction of `crack`'s tip `tip` at `p` on `main` joins, and
     /// whether it is the first link between the two flaws (coalescence):
-    /// flaws linked by an earlier link of the run, directly or through
-    /// others, do not coalesce again.
-    fn link(&self, crack: usize, tip: usize, main: usize, p: P2) -> LinkReport {
+    /// flaws linked by an earlier link of the run (those of earlier steps,
+    /// and `earlier` of this one), directly or through others, do not
+    /// coalesce again.
+    fn link(
+        &self,
+        crack: usize,
+        tip: usize,
+        main: usize,
+        p: P2,
+        earlier: &[LinkReport],
+    ) -> LinkReport {
         let lineage = &self.state.lineage;
         let segments = self.state.cracks[crack].points.len() - 1;
         let own = lineage[crack].part_of_segment(if tip == 0 { 0 } else { segments - 1 });
         let hit = nearest_segment(&self.state.cracks[main], p);
         let flaws = [lineage[crack].flaw, lineage[main].flaw];
-        let mut parent: Vec<usize> = (0..lineage.len()).collect();
-        for l in self.state.history.iter().flat_map(|s| &s.links) {
-            let (a, b) = (root(&mut parent, l.flaws[0]), root(&mut parent, l.flaws[1]));
-            parent[a] = b;
-        }
+        let before = self.state.history.iter().flat_map(|s| &s.links);
+        let mut groups = Groups::linked(lineage, before.chain(earlier));
         LinkReport {
             crack,
             tip,
             main,
             joins: [own, lineage[main].part_of_segment(hit)],
             flaws,
-            coalescence: root(&mut parent, flaws[0]) != root(&mut parent, flaws[1]),
+            coalescence: groups.coalesce(flaws).is_some(),
         }
     }
 
@@ -442,12 +533,25 @@ impl Simulation {
         // the solver stays (a direct one refactorises into its factors'
         // storage): with `factored` unknown, its next matrix is a new one
         self.scratch.factored = None;
+        self.scratch.site_grid = None;
+        self.scratch.rock = None;
         self.state.faces = faces;
         // the next step starts from no displacement (see `Resume`)
         self.state.u = vec![0.0; self.scratch.xfem.n_free()];
         self.state.solved = false;
-        // a secondary crack has the faces of the flaw it belongs to
-        let specs = &self.model.scene.cracks;
+        // a secondary crack has the faces of the crack system it belongs
+        // to; a crack started in the intact rock the rock's friction
+        let specs = &self.state.scene.cracks;
+        let rock = CrackSpec {
+            friction: self
+                .model
+                .scene
+                .material
+                .friction_angle_deg
+                .to_radians()
+                .tan(),
+            ..CrackSpec::segment([0.0; 2], [0.0; 2])
+        };
         let grown = self
             .state
             .cracks
@@ -457,7 +561,11 @@ impl Simulation {
             .map(|(i, (c, l))| CrackSpec {
                 points: Some(c.points.iter().map(|p| [p.x, p.y]).collect()),
                 arc: None,
-                ..specs.get(i).unwrap_or(&specs[l.flaw]).clone()
+                ..specs
+                    .get(i)
+                    .or_else(|| (!l.is_intact()).then(|| &specs[l.flaw]))
+                    .unwrap_or(&rock)
+                    .clone()
             })
             .collect();
         self.state.scene.set_grown_cracks(grown);

@@ -19,6 +19,7 @@
 mod critical;
 mod grow;
 mod initiation;
+mod intact;
 mod job;
 mod relax;
 mod run;

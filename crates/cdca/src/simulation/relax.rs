@@ -114,6 +114,7 @@ impl Simulation {
         self.scratch.contact = reached.info;
         self.state.solved = true;
         self.evaluate();
+        self.read_rock();
     }
 
     /// Residual samples of the current (or last) solve, all its contact

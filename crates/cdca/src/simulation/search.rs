@@ -26,6 +26,7 @@ use web_time::Instant;
 use crate::contact::law::FaceState;
 use crate::contact::status::ContactInfo;
 use crate::fracture::criterion::{Circle, Faces};
+use crate::fracture::sites::Readings;
 use crate::report::{KinkReport, TipReport};
 use crate::solvers::relaxation::ResidualSample;
 
@@ -201,6 +202,7 @@ pub(super) struct Snapshot {
     pub(super) utilisation: Vec<f64>,
     pub(super) kinks: Vec<KinkReport>,
     pub(super) kink_utilisation: Vec<f64>,
+    pub(super) rock: Option<Readings>,
     pub(super) contact: ContactInfo,
     pub(super) residual: Vec<ResidualSample>,
 }

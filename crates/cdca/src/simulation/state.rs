@@ -13,10 +13,11 @@ use crate::discretisation::model::Model;
 use crate::discretisation::xfem::{Reuse, Xfem};
 use crate::error::{SceneError, SolveError};
 use crate::fracture::criterion::{Circle, CriterionParams, Faces};
+use crate::fracture::sites::{Readings, SiteGrid};
 use crate::fracture::tips::TipDomains;
 use crate::geometry::cracks::{Crack, TipKind, split_specimen};
-use crate::report::{GrowthStepReport, KinkReport, Outcome, TipReport};
-use crate::scene::{Lineage, MIN_END_SEGMENT, Scene, SceneFile, SideBc, fmt_point};
+use crate::report::{GrowthStepReport, KinkReport, Outcome, StartLimitReport, TipReport};
+use crate::scene::{Lineage, MIN_END_SEGMENT, RockStarts, Scene, SceneFile, SideBc, fmt_point};
 use crate::solvers::automaton::AutomatonParams;
 use crate::solvers::direct::Factor;
 use crate::solvers::linear::LinearSolver;
@@ -52,6 +53,11 @@ pub(super) struct State {
     /// What each crack's parts are (flaw, wing, secondary), for the links
     /// the growth report names.
     pub(super) lineage: Vec<Lineage>,
+    /// The run's peak and the starts in the intact rock at it
+    /// (`growth.intact_rock = "nucleate"`).
+    pub(super) rock_starts: RockStarts,
+    /// The bound on those starts stopped the run.
+    pub(super) start_limit: Option<StartLimitReport>,
 }
 
 /// Derived data, rebuilt from model and state; never serialised.
@@ -90,6 +96,15 @@ pub(super) struct Scratch {
     pub(super) factored: Option<Vec<ContactState>>,
     /// Quadrature points the last rebuild left to integrate.
     pub(super) rebuild_points: usize,
+    /// The intact rock's sites on `xfem` (made at the first reading of a
+    /// growth run under `growth.intact_rock = "nucleate"`, remade after
+    /// every rebuild).
+    pub(super) site_grid: Option<SiteGrid>,
+    /// Their readings after the last real solve of a growth run.
+    pub(super) rock: Option<Readings>,
+    /// The uncracked specimen's failure load factor, and the sentence
+    /// (solved at the first ask).
+    pub(super) intact: std::cell::OnceCell<(Option<f64>, String)>,
 }
 
 /// Whether `b` has the discretisation of `a`
@@ -416,6 +431,9 @@ impl Simulation {
                 contact_guess: None,
                 factored: None,
                 rebuild_points,
+                site_grid: None,
+                rock: None,
+                intact: std::cell::OnceCell::new(),
             },
             state: State {
                 scene,
@@ -430,6 +448,11 @@ impl Simulation {
                 growths_here: resume.as_ref().map_or(0, |r| r.growths_here),
                 steps_before: resume.as_ref().map_or(0, |r| r.steps),
                 lineage,
+                rock_starts: resume
+                    .as_ref()
+                    .and_then(|r| r.rock_starts)
+                    .unwrap_or_default(),
+                start_limit: None,
             },
             model,
         })

@@ -95,7 +95,27 @@ fn write_csv(dir: &Path, report: &GrowReport) -> Result<(), CliError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use cdca::report::GrowthStepReport;
+    use cdca::Simulation;
+    use cdca::report::{GrowthStepReport, Outcome};
+
+    /// `Simulation::grow_to_end` with the step injected: growth steps by
+    /// `step` until the run ends or a step fails, and the run's report.
+    fn grow(
+        sim: &mut Simulation,
+        mut step: impl FnMut(&mut Simulation) -> Result<(), SolveError>,
+    ) -> (GrowReport, Option<SolveError>) {
+        let mut failed = None;
+        let outcome = loop {
+            if let Some(outcome) = sim.growth_finished() {
+                break outcome;
+            }
+            if let Err(e) = step(sim) {
+                failed = Some(e);
+                break Outcome::Error;
+            }
+        };
+        (sim.grow_report(outcome, failed.as_ref()), failed)
+    }
 
     /// A step that fails ends growth with the steps before it in the
     /// report: the first two steps of the bundled single flaw (40 × 40),

@@ -15,6 +15,7 @@ mod merge;
 mod pool;
 mod table;
 
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -177,19 +178,21 @@ fn report(
     ran: usize,
     started: Instant,
 ) {
-    println!(
-        "study `{}` (sha256 {}): {} points; {} rows in `{}` ({resumed} resumed, {ran} run in {:.1} s)\n",
+    let mut text = format!(
+        "study `{}` (sha256 {}): {} points; {} rows in `{}` ({resumed} resumed, {ran} run in {:.1} s)\n\n{}",
         study.name,
         study.hash,
         study.points().len(),
         rows,
         out.display(),
-        started.elapsed().as_secs_f64()
+        started.elapsed().as_secs_f64(),
+        cdca::study::summary::HEADER
     );
-    print!("{}", cdca::study::summary::HEADER);
     for (_, row) in cdca::study::summary::by_layout(table) {
-        print!("{row}");
+        text.push_str(&row);
     }
+    // the table is on disk: a closed stdout (`| head`) loses the summary only
+    let _ = std::io::stdout().lock().write_all(text.as_bytes());
     let points = |pick: &dyn Fn(usize) -> bool| -> Vec<String> {
         (0..table.rows.len())
             .filter(|&r| pick(r))

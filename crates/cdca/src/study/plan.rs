@@ -148,6 +148,23 @@ impl Study {
         })
     }
 
+    /// The same study run as `run` (the workbench runs a study's first
+    /// steps in the browser). Its hash changes with it (the hash of the
+    /// file's hash and the run's name), so that its rows are not taken for
+    /// the file's.
+    #[must_use]
+    pub fn with_run(mut self, run: RunKind) -> Self {
+        if run != self.run {
+            let name = match run {
+                RunKind::Grow => "grow",
+                RunKind::FirstStep => "first_step",
+            };
+            self.hash = hex(&Sha256::digest(format!("{} run {name}", self.hash)));
+            self.run = run;
+        }
+        self
+    }
+
     /// Every point, in order (ids 1, 2, …).
     pub fn points(&self) -> &[Point] {
         &self.points

@@ -8,12 +8,11 @@
 use cdca::report::Outcome;
 use cdca::study::{Input, Point, Row, RunKind, Study};
 use cdca::{Simulation, SolveError};
-use egui::Color32;
 use web_time::Instant;
 
-use crate::figure::{Figure, Series, Style, YTicks};
-use crate::figures::colour;
+use crate::figure::Figure;
 use crate::pacer::Pacer;
+pub use crate::study_map::MapColour;
 use crate::task::{Progress, Task};
 
 /// A study file shipped with the workbench.
@@ -50,15 +49,15 @@ pub const BUNDLED_STUDIES: &[BundledStudy] = &[
 /// Native seconds of one growth step per element (the held-out pairs, 100 ×
 /// 100: 0.14 s a step on this project's 2-core machine; a first step of
 /// the single flaw at 60 × 60 is 0.03 s).
-const SECONDS_PER_ELEMENT_STEP: f64 = 1.4e-5;
+pub const SECONDS_PER_ELEMENT_STEP: f64 = 1.4e-5;
 
 /// How much slower the browser's WebAssembly runs the solver (frame-time
 /// measurements of Run growth, docs/browser.md: about twice).
-const BROWSER_FACTOR: f64 = 2.0;
+pub const BROWSER_FACTOR: f64 = 2.0;
 
 /// Steps assumed for a run grown to the end (the held-out pairs take 30 to
 /// 60; a scene's `growth.max_steps` caps it).
-const TYPICAL_STEPS: usize = 40;
+pub const TYPICAL_STEPS: usize = 40;
 
 /// A study file, read and checked.
 #[derive(Clone, Debug)]
@@ -93,20 +92,6 @@ impl LoadedStudy {
             study,
         })
     }
-}
-
-/// What the colours of a map show.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum MapColour {
-    /// What the first link joins.
-    Link,
-    /// The peak λ, in four bands.
-    Peak,
-    /// Which cracks grew from the flaws: wings (first in tension),
-    /// secondary cracks (first in shear, or started at a kink), or both
-    /// (a first step's mode).
-    #[default]
-    Cracks,
 }
 
 /// How the Study tab runs a study file (edited in place by the panel).
@@ -158,7 +143,7 @@ impl StudyFileSetup {
         } else {
             scene.growth.max_steps.min(TYPICAL_STEPS)
         };
-        let browser = if cfg!(target_arch = "wasm32") {
+        let browser = if crate::io::IN_BROWSER {
             BROWSER_FACTOR
         } else {
             1.0
@@ -323,34 +308,5 @@ pub fn input_text(input: &Input) -> String {
                 text
             }
         }
-    }
-}
-
-/// The colour of "no link" and of an invalid point on a map.
-pub const NO_LINK: Color32 = Color32::from_rgb(150, 150, 150);
-
-/// The colour of the `k`-th link category.
-pub fn link_colour(k: usize) -> Color32 {
-    colour(k)
-}
-
-/// Markers of a map: one series per category, in the given order.
-pub(crate) fn marker_series(name: String, colour: Color32, points: Vec<[f64; 2]>) -> Series {
-    Series {
-        name,
-        colour,
-        style: Style::Markers,
-        points,
-    }
-}
-
-/// An empty figure with these axes (the map's and the plot's frame).
-pub(crate) fn frame(id: String, x_label: String, y_label: String) -> Figure {
-    Figure {
-        id,
-        x_label,
-        y_label,
-        y_ticks: YTicks::Decimal,
-        ..Figure::default()
     }
 }

@@ -8,8 +8,52 @@
 use cdca::study::{Axis, Input, Row, Study};
 use egui::Color32;
 
+use crate::figure::YTicks;
 use crate::figure::{Figure, Series, Style};
-use crate::study_file::{MapColour, NO_LINK, frame, link_colour, marker_series};
+use crate::figures::colour;
+
+/// What the colours of a map show.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MapColour {
+    /// What the first link joins.
+    Link,
+    /// The peak λ, in four bands.
+    Peak,
+    /// Which cracks grew from the flaws: wings (first in tension),
+    /// secondary cracks (first in shear, or started at a kink), or both
+    /// (a first step's mode).
+    #[default]
+    Cracks,
+}
+
+/// The colour of "no link" and of an invalid point on a map.
+pub const NO_LINK: Color32 = Color32::from_rgb(150, 150, 150);
+
+/// The colour of the `k`-th link category.
+pub fn link_colour(k: usize) -> Color32 {
+    colour(k)
+}
+
+/// Markers of a map: one series per category, in the given order.
+fn marker_series(name: String, colour: Color32, points: Vec<[f64; 2]>) -> Series {
+    Series {
+        name,
+        colour,
+        style: Style::Markers,
+        points,
+    }
+}
+
+/// An empty figure with these axes (the map's and the plot's frame).
+fn frame(id: String, x_label: String, y_label: String) -> Figure {
+    Figure {
+        id,
+        x_label,
+        y_label,
+        y_ticks: YTicks::Decimal,
+        ..Figure::default()
+    }
+}
 
 /// Bands of the peak λ on a map, lightest (lowest) first.
 const PEAK_BANDS: [Color32; 4] = [

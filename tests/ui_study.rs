@@ -35,7 +35,10 @@ fn harness() -> Harness<'static, WorkbenchApp> {
 /// Steps frames until the study file's run has finished.
 fn run_until_finished(h: &mut Harness<'_, WorkbenchApp>, frames: usize) {
     for _ in 0..frames {
-        if h.state().file_study().is_some_and(cdca_workbench::study_file::FileStudy::finished) {
+        if h.state()
+            .file_study()
+            .is_some_and(cdca_workbench::study_file::FileStudy::finished)
+        {
             return;
         }
         h.step();

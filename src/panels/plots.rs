@@ -66,7 +66,9 @@ pub fn plots_ui(
         PlotTab::Study | PlotTab::StudyMap => {
             // the tab runs a sweep of one field, or a study file
             if file_setup.use_file {
-                super::study_file::study_file_ui(ui, v, file_setup, cmds);
+                super::study_file::study_file_ui(ui, v, file_setup, cmds, &|ui, i, fig, cmds| {
+                    figure_ui(ui, PlotTab::StudyMap, i, fig, cmds);
+                });
             } else {
                 ui.horizontal(|ui| super::study_file::mode_ui(ui, file_setup));
                 study_ui(ui, v.scene, v.study, study_setup, &figs, cmds);

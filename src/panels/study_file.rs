@@ -6,7 +6,7 @@
 use egui::{ProgressBar, Ui};
 
 use crate::command::{Command, Export};
-use crate::plot_tab::PlotTab;
+use crate::figure::Figure;
 use crate::study_file::{
     BUNDLED_STUDIES, FileStudy, LoadedStudy, MapColour, StudyFileSetup, input_text,
 };
@@ -17,11 +17,16 @@ use crate::view::AppView;
 /// keeps about 300.
 const FIGURE_HEIGHT: f32 = 330.0;
 
+/// Draws figure `index` as every plot is drawn (the plot panel's, with
+/// its legend and its CSV and SVG buttons).
+pub type FigureUi<'a> = &'a dyn Fn(&mut Ui, usize, &Figure, &mut Vec<Command>);
+
 pub fn study_file_ui(
     ui: &mut Ui,
     v: &AppView,
     setup: &mut StudyFileSetup,
     cmds: &mut Vec<Command>,
+    figure: FigureUi<'_>,
 ) {
     let running = v.file_study.is_some_and(|s| !s.finished());
     ui.horizontal_wrapped(|ui| {
@@ -46,7 +51,7 @@ pub fn study_file_ui(
         if ui
             .button("Open…")
             .on_hover_text(
-                "A study file of your own (File ▸ Open and dropping a file open one too)",
+                "A study file of your own (File > Open and a file dropped on the window open one too)",
             )
             .clicked()
         {
@@ -140,9 +145,7 @@ pub fn study_file_ui(
                         ui.allocate_ui_with_layout(egui::vec2(width, FIGURE_HEIGHT), down, |ui| {
                             ui.set_width(width);
                             ui.set_height(FIGURE_HEIGHT);
-                            ui.push_id(index, |ui| {
-                                super::plots::figure_ui(ui, PlotTab::StudyMap, index, fig, cmds);
-                            });
+                            ui.push_id(index, |ui| figure(ui, index, fig, cmds));
                         });
                     }
                 });

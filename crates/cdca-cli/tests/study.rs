@@ -270,7 +270,9 @@ fn four_shards_merged_equal_the_single_run() {
     );
     assert_eq!(short.code, Some(2));
     assert!(
-        short.stderr.contains("9 of 12 points have no row"),
+        short
+            .stderr
+            .contains("9 of 12 points of the study have no row"),
         "{}",
         short.stderr
     );
@@ -452,7 +454,7 @@ fn bad_input_names_the_file_and_field_and_keeps_the_rows() {
         ),
         (
             &["study", "good.json", "--shard", "5/4", "--out", "t.csv"],
-            "--shard 5/4: the shard must be 1 to N (N ≥ 1), here 5 of 4",
+            "good.json: --shard 5/4: the shard must be 1 to N (N ≥ 1), here 5 of 4",
         ),
         (
             &["study", "changed.json", "--shard", "1/6", "--out", "t.csv"],

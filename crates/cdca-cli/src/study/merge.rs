@@ -57,7 +57,7 @@ pub fn merge(files: &[PathBuf], out: &Path, study: &Study) -> Result<usize, CliE
             .collect::<Vec<_>>()
             .join(", ");
         return Err(CliError::Input(format!(
-            "--merge: {} of {} points have no row (points {shown}{}): finish their shards first",
+            "--merge: {} of {} points of the study have no row (points {shown}{}): finish their shards first",
             missing.len(),
             study.points().len(),
             if missing.len() > 10 { ", …" } else { "" }

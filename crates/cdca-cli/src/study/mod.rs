@@ -61,7 +61,10 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         return print_point(&args.study, &study, k);
     }
     let shard = match &args.shard {
-        Some(text) => Some(parse_shard(text)?),
+        Some(text) => Some(
+            parse_shard(text)
+                .map_err(|e| CliError::Input(format!("{}: {e}", args.study.display())))?,
+        ),
         None => None,
     };
     let out = args
@@ -72,7 +75,10 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let (rows, resumed, ran) = if args.merge.is_empty() {
         let jobs = args.jobs.unwrap_or_else(cores);
         if jobs == 0 {
-            return Err(CliError::Input("--jobs 0: at least one job".to_owned()));
+            return Err(CliError::Input(format!(
+                "{}: --jobs 0: at least one job",
+                args.study.display()
+            )));
         }
         let threads = args.solver_threads.unwrap_or((cores() / jobs).max(1));
         cdca::discretisation::xfem::set_integration_threads(threads);
@@ -130,8 +136,8 @@ fn print_point(path: &Path, study: &Study, k: usize) -> Result<(), CliError> {
 }
 
 /// `I/N` with 1 ≤ I ≤ N.
-fn parse_shard(text: &str) -> Result<(usize, usize), CliError> {
-    let bad = |why: &str| CliError::Input(format!("--shard {text}: {why}"));
+fn parse_shard(text: &str) -> Result<(usize, usize), String> {
+    let bad = |why: &str| format!("--shard {text}: {why}");
     let (i, n) = text
         .split_once('/')
         .ok_or_else(|| bad("expects I/N, as 2/4"))?;

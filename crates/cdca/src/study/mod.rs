@@ -4,7 +4,7 @@
 //! (`cdca study`) and the workbench's Study tab read the same file through
 //! this module; they do the files, the threads and the drawing.
 //!
-//! - [`file`]: the study file's serde types (unknown fields are errors);
+//! - [`file`](mod@file): the study file's serde types (unknown fields are errors);
 //! - [`axis`]: an axis's values (listed, a range, a seeded random sample);
 //! - [`flaws`]: the flaws generator (one flaw, or a pair in one of five
 //!   layouts, centred as the held-out pairs were);

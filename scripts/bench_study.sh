@@ -7,7 +7,8 @@
 # Prints each run's wall time, the medians and the median of the pairs'
 # ratios; then the overhead per run: the wall time of `--jobs 1` less the
 # sum of its rows' `seconds`, and against POINTS `cdca grow` processes of
-# the same scene. Run it on a quiet machine (uptime below 0.3).
+# the same scene. Run it on a quiet machine (uptime below 0.3). Leaves the
+# study in bench-out/bench_study/even.json.
 # Usage: [POINTS=8] [STEPS=8] [PAIRS=3] bash scripts/bench_study.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,8 +17,10 @@ POINTS=${POINTS:-8}
 STEPS=${STEPS:-8}
 PAIRS=${PAIRS:-3}
 bin=$PWD/target/release/cdca
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
+# the study stays (bench-out/ is not committed), for timing it by hand:
+# each timed run starts from no table, or it would resume a finished one
+dir=bench-out/bench_study
+mkdir -p "$dir"
 values=$(seq -s, 1 "$POINTS" | sed 's/\([0-9]*\)/"\1"/g')
 cat >"$dir/even.json" <<EOF
 {

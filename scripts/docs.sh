@@ -9,12 +9,13 @@
 #     <!-- end:NAME -->
 # The rows are written by whatever measures them, one file per row, sorted
 # by file name: the tests (through crates/cdca/tests/support/docs_row.rs,
-# during `bash scripts/test.sh`) and the slow scripts (held_out_pairs.sh).
+# during `bash scripts/test.sh`) and the slow studies (held_out_study below).
 # The table of ignored tests is read from the sources here.
 #
 # Usage:
 #   bash scripts/docs.sh           the quick tables, then the slow ones
-#                                  (runs scripts/held_out_pairs.sh, 2 min)
+#                                  (runs assets/studies/held_out_pairs.json
+#                                  with `cdca study`, 2 min on 2 cores)
 #   bash scripts/docs.sh --quick   the quick tables: the rows the last
 #                                  `bash scripts/test.sh` wrote, and the
 #                                  ignored tests (runs the tests if no rows
@@ -66,6 +67,22 @@ ignored_tests() {
             }
         ' "$f"
     done
+}
+
+# The held-out pairs' table (docs/fracture-model.md, *Coalescence*): the
+# study assets/studies/held_out_pairs.json, run afresh (its table's rows
+# are the code's of the day: a table left from other code is not resumed),
+# and the summary per layout that `cdca study` prints, one row file each.
+held_out_study() {
+    cargo build --release --workspace -q
+    mkdir -p bench-out
+    local out=$rows/held-out-pairs
+    rm -rf "$out"
+    mkdir -p "$out"
+    rm -f bench-out/held_out_pairs.csv
+    "$target/release/cdca" study assets/studies/held_out_pairs.json \
+        --out bench-out/held_out_pairs.csv |
+        awk -v dir="$out" '/^\| / && !/^\| (layout|---) / { n++; print > sprintf("%s/%02d.md", dir, n) }'
 }
 
 # splice FILE NAME: the rows of table NAME put between its markers in FILE.
@@ -137,7 +154,7 @@ case "$mode" in
     ;;
 all)
     generate docs "${quick[@]}"
-    bash scripts/held_out_pairs.sh
+    held_out_study
     generate docs "${slow[@]}"
     ;;
 esac

@@ -12,6 +12,9 @@
 # (a secondary crack from the kink its wing left, with whatever grew from
 # it); writes bench-out/flaw_range.csv (with
 # another LENGTH, bench-out/flaw_range_<LENGTH>mm.csv).
+# Its runs at the defaults are the study assets/studies/flaw_range.json
+# (`cdca study`, docs/studies.md); this script stays for the wings'
+# lengths and end angles, which a study's row does not hold.
 # Usage: [MESH=100] [LENGTH=3] bash scripts/flaw_range.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -9,6 +9,9 @@
 # elements per side, SOLVER the linear solver (direct, automaton, cg,
 # multigrid), and LOAD_STEPS=N grows under load control instead: the load
 # ramped to 150 MPa in N steps, at most 20 growths per step, 80 steps.
+# Its runs of seed 7 are the study assets/studies/random_layouts.json
+# (`cdca study`, docs/studies.md); this script stays for other seeds and
+# the load-controlled variant, whose draws a study file would have to list.
 # Usage: [MESH=60] [SOLVER=direct] [LOAD_STEPS=N] bash scripts/random_layouts.sh [COUNT] [SEED]
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -25,6 +25,7 @@ use crate::run::RunMode;
 use crate::runner::{FieldTask, Runner};
 use crate::scenes;
 use crate::study::{Study, StudySetup};
+use crate::study_file::{FileStudy, LoadedStudy, StudyFileSetup};
 use crate::task::{Progress, Task};
 pub use crate::view::Message;
 use crate::view::{AppView, RunStatus, ViewState};
@@ -82,6 +83,9 @@ pub enum StartRun {
     Compare,
     /// Run a parameter study (the Study tab's Run study).
     Study(crate::study::StudySetup),
+    /// Read a study file and run its first steps (the Study tab's *Study
+    /// file*).
+    StudyFile { source: String, text: String },
 }
 
 impl Default for Options {
@@ -127,6 +131,11 @@ pub struct WorkbenchApp {
     pub(crate) race_time_cap: f64,
     pub(crate) study: Option<Study>,
     pub(crate) study_setup: StudySetup,
+    /// The study file read (Study tab, *Study file*), its run, and how
+    /// to run it.
+    pub(crate) loaded_study: Option<LoadedStudy>,
+    pub(crate) file_study: Option<FileStudy>,
+    pub(crate) study_file_setup: StudyFileSetup,
     pub(crate) options: Options,
     pub(crate) started: bool,
     /// A job asked for while another held the slot: it starts when the
@@ -182,6 +191,9 @@ impl WorkbenchApp {
             race_time_cap: compare::DEFAULT_TIME_CAP,
             study: None,
             study_setup: StudySetup::default(),
+            loaded_study: None,
+            file_study: None,
+            study_file_setup: StudyFileSetup::default(),
             options,
             started: false,
             waiting: None,
@@ -259,6 +271,12 @@ impl WorkbenchApp {
             })
             .or_else(|| {
                 self.study
+                    .as_ref()
+                    .filter(|s| !s.finished())
+                    .map(|_| Job::Study)
+            })
+            .or_else(|| {
+                self.file_study
                     .as_ref()
                     .filter(|s| !s.finished())
                     .map(|_| Job::Study)
@@ -345,6 +363,21 @@ impl WorkbenchApp {
     /// The parameter study, running or finished.
     pub fn study(&self) -> Option<&Study> {
         self.study.as_ref()
+    }
+
+    /// The study file read in the Study tab.
+    pub fn loaded_study(&self) -> Option<&LoadedStudy> {
+        self.loaded_study.as_ref()
+    }
+
+    /// The study file's run, running or finished.
+    pub fn file_study(&self) -> Option<&FileStudy> {
+        self.file_study.as_ref()
+    }
+
+    /// How the Study tab runs a study file.
+    pub fn study_file_setup(&self) -> &StudyFileSetup {
+        &self.study_file_setup
     }
     /// The solution version and the number of samples of the field the
     /// canvas shows, if any.
@@ -464,6 +497,10 @@ impl WorkbenchApp {
                     self.study_setup = setup.clone();
                     self.queued = Some(Command::RunStudy(setup));
                 }
+                Some(StartRun::StudyFile { source, text }) => {
+                    self.run_cmd(ctx, Command::OpenStudy { source, text });
+                    self.queued = Some(Command::RunStudyFile(self.study_file_setup.clone()));
+                }
                 _ => {}
             }
         }
@@ -531,7 +568,10 @@ impl WorkbenchApp {
         match self.running_job()? {
             Job::Solve | Job::Growth => Some(&mut self.runner),
             Job::Race => self.race.as_mut().map(|r| r as &mut dyn Task),
-            Job::Study => self.study.as_mut().map(|s| s as &mut dyn Task),
+            Job::Study => match self.file_study.as_mut().filter(|s| !s.finished()) {
+                Some(s) => Some(s as &mut dyn Task),
+                None => self.study.as_mut().map(|s| s as &mut dyn Task),
+            },
         }
     }
 
@@ -546,7 +586,10 @@ impl WorkbenchApp {
                 }
             }
             Some(Job::Study) => {
-                if let Some(s) = self.study.as_mut() {
+                if let Some(s) = self.study.as_mut().filter(|s| !s.finished()) {
+                    s.cancel();
+                }
+                if let Some(s) = self.file_study.as_mut().filter(|s| !s.finished()) {
                     s.cancel();
                 }
             }
@@ -661,6 +704,8 @@ impl WorkbenchApp {
             can_redo: self.undo.can_redo(),
             race: self.race.as_ref(),
             study: self.study.as_ref(),
+            loaded_study: self.loaded_study.as_ref(),
+            file_study: self.file_study.as_ref(),
             selected_tip: self.selected_tip,
             tip_curve,
             deform_scale_used: self.canvas.deform_scale_used,
@@ -672,6 +717,7 @@ impl WorkbenchApp {
             fit_requested: &mut self.canvas.fit_requested,
             race_time_cap: &mut self.race_time_cap,
             study_setup: &mut self.study_setup,
+            study_file_setup: &mut self.study_file_setup,
         };
         (view, state)
     }
@@ -716,14 +762,26 @@ impl WorkbenchApp {
                     panels::tip::tip_ui(ui, &v, &mut cmds);
                 });
             });
+        // a study file's map needs its controls and a 300 px plot: the
+        // panel takes 480 px while the Study tab shows one (at 1400 × 900
+        // the canvas keeps about 350)
+        let study_file = self.plot_tab == PlotTab::Study && self.study_file_setup.use_file;
         egui::Panel::bottom("plots")
             .resizable(true)
             .default_size(300.0)
+            .min_size(if study_file { 480.0 } else { 20.0 })
             .show(ui, |ui| {
                 // the panel keeps its height whether it shows a plot or a hint
                 ui.set_min_height(ui.available_height());
                 let (v, s) = self.view_parts();
-                panels::plots::plots_ui(ui, &v, s.plot_tab, s.study_setup, &mut cmds);
+                panels::plots::plots_ui(
+                    ui,
+                    &v,
+                    s.plot_tab,
+                    s.study_setup,
+                    s.study_file_setup,
+                    &mut cmds,
+                );
             });
         egui::CentralPanel::default().show(ui, |ui| {
             panels::menu::message_ui(ui, self.message.as_ref(), &mut cmds);

@@ -11,6 +11,7 @@ use crate::job::{Job, Waiting};
 use crate::path_prompt::{PathPrompt, PromptAction};
 use crate::plot_tab::PlotTab;
 use crate::study::Study;
+use crate::study_file::{FileStudy, LoadedStudy};
 use crate::view::Message;
 use crate::{export, io, scenes};
 
@@ -142,7 +143,22 @@ impl WorkbenchApp {
                 if let Some(s) = self.study.as_mut() {
                     s.cancel();
                 }
+                if let Some(s) = self.file_study.as_mut() {
+                    s.cancel();
+                }
             }
+            Command::OpenStudy { source, text } => self.open_study(&source, &text),
+            Command::RunStudyFile(setup) => match &self.loaded_study {
+                Some(loaded) => {
+                    self.study_file_setup = setup.clone();
+                    self.file_study = Some(FileStudy::new(loaded, &setup));
+                }
+                None => {
+                    self.message = Some(Message::Error(
+                        "Choose or open a study file before running it.".to_owned(),
+                    ));
+                }
+            },
             Command::Pause => self.runner.pause(),
             Command::Reset => {
                 let valid = self.runner.invalidate(&self.scene);
@@ -242,7 +258,7 @@ impl WorkbenchApp {
             Command::Solve if iterative => PlotTab::ResidualBySweep,
             Command::GrowOne | Command::RunGrowth => PlotTab::Angles,
             Command::CompareSolvers { .. } => PlotTab::SolverComparison,
-            Command::RunStudy(_) => PlotTab::Study,
+            Command::RunStudy(_) | Command::RunStudyFile(_) => PlotTab::Study,
             Command::SetScene { scene, .. } if scene.solver.kind != self.scene.solver.kind => {
                 PlotTab::fitting(scene)
             }
@@ -395,8 +411,30 @@ impl WorkbenchApp {
         });
     }
 
+    /// Reads a study file for the Study tab (which then shows it); a bad
+    /// file leaves the study read before and says why.
+    fn open_study(&mut self, source: &str, text: &str) {
+        match LoadedStudy::parse(source, text) {
+            Ok(loaded) => {
+                self.loaded_study = Some(loaded);
+                self.study_file_setup.use_file = true;
+                self.plot_tab = PlotTab::Study;
+            }
+            Err(e) => {
+                self.message = Some(Message::Error(format!("Could not read the study {e}")));
+            }
+        }
+    }
+
     /// Opens a scene file's text; a bad file leaves everything as it was.
+    /// A study file (one with `axes`) opens in the Study tab instead.
     fn open_scene_text(&mut self, source: String, text: &str) {
+        let is_study =
+            serde_json::from_str::<serde_json::Value>(text).is_ok_and(|v| v.get("axes").is_some());
+        if is_study {
+            self.open_study(&source, text);
+            return;
+        }
         match cdca::Scene::from_json(text).map(cdca::Scene::into_file) {
             Ok(scene) => self.open_scene(source, scene),
             Err(e) => {
@@ -415,6 +453,7 @@ impl WorkbenchApp {
         match what {
             Export::CrackPaths => Some(self.crack_paths_csv()),
             Export::History => Some(self.history_csv()),
+            Export::StudyTable => self.file_study.as_ref().map(FileStudy::to_csv),
             Export::Plot {
                 tab,
                 index,
@@ -426,6 +465,13 @@ impl WorkbenchApp {
 
     /// The figures of a plot tab, as the plot panel draws them.
     fn plot_figures(&self, tab: PlotTab) -> Vec<Figure> {
+        if tab == PlotTab::StudyMap {
+            return self
+                .file_study
+                .as_ref()
+                .map(|s| s.figures(self.study_file_setup.colour))
+                .unwrap_or_default();
+        }
         crate::figures::figures(
             tab,
             self.runner.view(),
@@ -509,6 +555,22 @@ impl WorkbenchApp {
                     ("CSV", "csv"),
                     study.to_csv().as_bytes(),
                 ),
+            },
+            Export::StudyTable => match &self.file_study {
+                None => Err("run a study file before exporting its table".to_owned()),
+                Some(run) => {
+                    let stem = run.source.trim_end_matches(".json").replace(' ', "_");
+                    let first = if run.study.run == cdca::study::RunKind::FirstStep {
+                        "_first_steps"
+                    } else {
+                        ""
+                    };
+                    file(
+                        &format!("{stem}{first}.csv"),
+                        ("CSV", "csv"),
+                        run.to_csv().as_bytes(),
+                    )
+                }
             },
             Export::Plot { tab, index, format } => match self.plot_figures(tab).get(index) {
                 None => Err("nothing to export: the plot is empty".to_owned()),

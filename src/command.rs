@@ -32,6 +32,8 @@ pub enum Export {
     Race,
     /// The parameter study as CSV.
     Study,
+    /// A study file's run as CSV (the columns of `cdca study`).
+    StudyTable,
     /// Figure `index` of a plot tab, as CSV or SVG.
     Plot {
         tab: PlotTab,
@@ -104,6 +106,15 @@ pub enum Command {
     SetAccelerateGrowth(bool),
     /// Run a parameter study on the current scene.
     RunStudy(StudySetup),
+    /// Read a study file's text (bundled, opened or dropped); on error the
+    /// study read before stays and the error is shown.
+    OpenStudy {
+        source: String,
+        text: String,
+    },
+    /// Run the study file read, as the Study tab's setup says (first steps,
+    /// or the first points grown to the end).
+    RunStudyFile(crate::study_file::StudyFileSetup),
     CancelStudy,
     /// Inspect tip `i` of the current solution's tips (None: close).
     SelectTip(Option<usize>),

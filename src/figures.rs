@@ -57,6 +57,8 @@ pub fn figures(
         PlotTab::LoadFactor => load_factor(view, specimen),
         PlotTab::SolverComparison => race.map(race_figure),
         PlotTab::Study => return study.map(study_figures).unwrap_or_default(),
+        // a study file's figures come with its run (`study_map`)
+        PlotTab::StudyMap => None,
     };
     figure.into_iter().collect()
 }

@@ -8,6 +8,10 @@
 //! wrapper in `web.rs` does so every frame). Saving is a download of a
 //! `Blob` through a temporary `<a download>` link, which is synchronous.
 
+/// Whether the workbench runs in a browser (WebAssembly): what the
+/// Study tab's time estimate allows for.
+pub const IN_BROWSER: bool = cfg!(target_arch = "wasm32");
+
 /// A file the user picked: its name (for messages) and its text.
 pub struct OpenedFile {
     pub name: String,

@@ -36,7 +36,7 @@ impl Job {
             Command::Solve | Command::Step | Command::Relax => Some(Self::Solve),
             Command::GrowOne | Command::RunGrowth => Some(Self::Growth),
             Command::CompareSolvers { .. } => Some(Self::Race),
-            Command::RunStudy(_) => Some(Self::Study),
+            Command::RunStudy(_) | Command::RunStudyFile(_) => Some(Self::Study),
             _ => None,
         }
     }

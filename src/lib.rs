@@ -26,6 +26,8 @@ mod runner;
 pub mod scenes;
 mod solution;
 pub mod study;
+pub mod study_file;
+mod study_map;
 mod task;
 mod units;
 mod view;

@@ -5,7 +5,7 @@
 /// How to start the workbench from a shell.
 #[cfg(not(target_arch = "wasm32"))]
 const USAGE: &str = "usage: cdca-workbench [SCENE.json | --link LINK] [--run relax|grow|compare]
-                     [--study PATH FROM TO COUNT]
+                     [--study PATH FROM TO COUNT] [--study-file STUDY.json]
 
 Opens SCENE.json, or the scene a shared link carries (a web address or its
 #scene=… fragment, from File > Copy link to this scene; default: the last
@@ -13,7 +13,8 @@ scene) and, with --run, starts the
 relaxation (relax), the growth run (grow) or the solver race (compare)
 after the first solve; with --study, a parameter study of the scene field
 PATH (e.g. cracks.0.friction) over COUNT values from FROM to TO, in the
-Study tab's units (MPa, mm, °, or none).";
+Study tab's units (MPa, mm, °, or none); with --study-file, the first
+steps of every point of a study file (docs/studies.md) in the Study tab.";
 
 /// What the command line asks for.
 #[cfg(not(target_arch = "wasm32"))]
@@ -86,6 +87,15 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Option<Launch>, 
                     to,
                     count,
                 }));
+            }
+            "--study-file" => {
+                let path = args.next().ok_or("--study-file needs STUDY.json")?;
+                let text = std::fs::read_to_string(&path)
+                    .map_err(|e| format!("cannot read {path}: {e}"))?;
+                let source = std::path::Path::new(&path)
+                    .file_name()
+                    .map_or_else(|| path.clone(), |n| n.to_string_lossy().into_owned());
+                launch.run = Some(StartRun::StudyFile { source, text });
             }
             flag if flag.starts_with('-') => return Err(format!("unknown option {flag}")),
             path => {

@@ -15,6 +15,9 @@ pub enum PlotTab {
     SolverComparison,
     /// A parameter study: kink angle and mode against one parameter.
     Study,
+    /// A study file's run (shown in the Study tab): its map per layout, or
+    /// its plots over one axis.
+    StudyMap,
 }
 
 impl PlotTab {

@@ -8,6 +8,8 @@ use cdca::scene::SceneFile;
 pub struct Bundled {
     /// Menu label.
     pub title: &'static str,
+    /// The file's name in `assets/scenes/` (study files name scenes so).
+    pub file: &'static str,
     /// The scene file's text.
     pub json: &'static str,
 }
@@ -19,6 +21,7 @@ macro_rules! bundled {
     ($title:literal, $file:literal) => {
         Bundled {
             title: $title,
+            file: $file,
             json: include_str!(concat!("../assets/scenes/", $file)),
         }
     };

@@ -15,6 +15,7 @@ use crate::plot_tab::PlotTab;
 use crate::run::RunMode;
 use crate::solution::SolutionView;
 use crate::study::{Study, StudySetup};
+use crate::study_file::{FileStudy, LoadedStudy, StudyFileSetup};
 
 /// A message shown above the canvas until dismissed.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -63,6 +64,9 @@ pub struct AppView<'a> {
     pub race: Option<&'a Race>,
     /// The parameter study, running or finished.
     pub study: Option<&'a Study>,
+    /// The study file read (Study tab, *Study file*), and its run.
+    pub loaded_study: Option<&'a LoadedStudy>,
+    pub file_study: Option<&'a FileStudy>,
     pub selected_tip: Option<usize>,
     /// σ_θθ and τ_rθ around the selected tip, when available.
     pub tip_curve: Option<&'a CriterionCurve>,
@@ -83,4 +87,6 @@ pub struct ViewState<'a> {
     pub race_time_cap: &'a mut f64,
     /// The parameter study to run next.
     pub study_setup: &'a mut StudySetup,
+    /// How the Study tab runs a study file.
+    pub study_file_setup: &'a mut StudyFileSetup,
 }

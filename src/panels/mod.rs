@@ -6,5 +6,6 @@ pub mod menu;
 pub mod plots;
 pub mod scene;
 pub mod solver;
+pub mod study_file;
 pub mod tip;
 mod widgets;

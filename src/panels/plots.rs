@@ -19,6 +19,7 @@ use crate::figures::figures;
 use crate::plot_tab::PlotTab;
 use crate::solution::SolutionView;
 use crate::study::{SUGGESTED_PATHS, Study, StudySetup, param_unit};
+use crate::study_file::StudyFileSetup;
 use crate::units;
 use crate::view::AppView;
 
@@ -49,6 +50,7 @@ pub fn plots_ui(
     v: &AppView,
     plot_tab: &mut PlotTab,
     study_setup: &mut StudySetup,
+    file_setup: &mut StudyFileSetup,
     cmds: &mut Vec<Command>,
 ) {
     ui.horizontal_wrapped(|ui| {
@@ -61,7 +63,17 @@ pub fn plots_ui(
     let figs = figures(tab, v.solution, v.race, v.study, specimen);
     match tab {
         PlotTab::SolverComparison => race_ui(ui, v.race, &figs, cmds),
-        PlotTab::Study => study_ui(ui, v.scene, v.study, study_setup, &figs, cmds),
+        PlotTab::Study | PlotTab::StudyMap => {
+            // the tab runs a sweep of one field, or a study file
+            if file_setup.use_file {
+                super::study_file::study_file_ui(ui, v, file_setup, cmds, &|ui, i, fig, cmds| {
+                    figure_ui(ui, PlotTab::StudyMap, i, fig, cmds);
+                });
+            } else {
+                ui.horizontal(|ui| super::study_file::mode_ui(ui, file_setup));
+                study_ui(ui, v.scene, v.study, study_setup, &figs, cmds);
+            }
+        }
         _ => match figs.first() {
             Some(fig) => figure_ui(ui, tab, 0, fig, cmds),
             None => {
@@ -108,11 +120,18 @@ fn spacer(kind: YTicks, min_step: f64) -> impl Fn(GridInput) -> Vec<egui_plot::G
 }
 
 /// The legend above the data and the export buttons, then the plot.
-fn figure_ui(ui: &mut Ui, tab: PlotTab, index: usize, fig: &Figure, cmds: &mut Vec<Command>) {
+pub(crate) fn figure_ui(
+    ui: &mut Ui,
+    tab: PlotTab,
+    index: usize,
+    fig: &Figure,
+    cmds: &mut Vec<Command>,
+) {
     ui.horizontal_wrapped(|ui| {
         for s in fig.legend() {
             swatch(ui, s.colour, Some(s.style));
-            ui.label(fig.legend_name(s));
+            // an entry moves to the next row whole, never cut mid-phrase
+            ui.add(egui::Label::new(fig.legend_name(s)).extend());
         }
         for (name, _, colour) in &fig.vlines {
             swatch(ui, *colour, None);

@@ -11,6 +11,8 @@ mod grow;
 mod output;
 mod scene_file;
 mod solve;
+mod study;
+mod svg;
 mod sweep;
 mod validate;
 
@@ -42,6 +44,9 @@ enum Command {
     Sweep(sweep::Args),
     /// Error against run time of every solver (CSV, SVG and a table).
     Bench(bench::Args),
+    /// Every point of a study file grown as `cdca grow` grows it, one CSV
+    /// row each, on every core; resumable, in shards, merged.
+    Study(study::Args),
 }
 
 fn main() -> ExitCode {
@@ -56,6 +61,7 @@ fn main() -> ExitCode {
         Command::Grow(args) => grow::run(&args),
         Command::Sweep(args) => sweep::run(&args),
         Command::Bench(args) => bench::run(&args),
+        Command::Study(args) => study::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

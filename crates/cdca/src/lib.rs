@@ -20,6 +20,7 @@
 //! | [`Simulation`] | the facade: the paper's steps on one scene (§9) |
 //! | [`race`] | error against run time of any solver, for benchmarks |
 //! | [`csv`] | the report tables as CSV, one writer each, for the CLI and the workbench |
+//! | [`study`] | studies of many scenes: the study file, its points, one row per growth run |
 
 pub mod contact;
 pub mod csv;
@@ -32,6 +33,7 @@ pub mod report;
 pub mod scene;
 mod simulation;
 pub mod solvers;
+pub mod study;
 
 pub use contact::ContactState;
 pub use error::{SceneError, SolveError};

@@ -492,7 +492,7 @@ fn stepped_flaws_coalesce() {
 /// the second's lower end one flaw length long at 120° to the horizontal
 /// (the second flaw 0.49 mm right and 5.55 mm up, the inner ends
 /// overlapping by 1.7 mm across the load), links within 40 steps, every
-/// step converged. Of `scripts/held_out_pairs.sh`'s 8 such pairs, 8 link
+/// step converged. Of the 8 such pairs of `assets/studies/held_out_pairs.json`, 8 link
 /// (docs/fracture-model.md, *Coalescence*).
 #[test]
 fn flaws_overlapping_across_the_load_coalesce() {

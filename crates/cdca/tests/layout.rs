@@ -16,7 +16,7 @@ mod support;
 use support::rust_files;
 
 /// The parts, bottom to top, as `lib.rs` lists them.
-const PARTS: [&str; 11] = [
+const PARTS: [&str; 12] = [
     "error",
     "scene",
     "report",
@@ -28,6 +28,7 @@ const PARTS: [&str; 11] = [
     "simulation",
     "race",
     "csv",
+    "study",
 ];
 
 fn src_dir() -> PathBuf {

@@ -1,10 +1,9 @@
 //! The error-versus-run-time picture: one log–log panel per scene at the
 //! largest size, one curve per solver, the direct solve as a dashed line at
-//! its time. Hand-written SVG.
-
-use std::fmt::Write as _;
+//! its time (through [`crate::svg`]).
 
 use super::Run;
+use crate::svg::Svg;
 
 const PANEL_W: f64 = 520.0;
 const PANEL_H: f64 = 400.0;
@@ -60,12 +59,7 @@ pub fn draw(runs: &[Run], size: usize) -> String {
             v
         });
     let width = PANEL_W * scenes.len().max(1) as f64;
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{PANEL_H}" font-family="sans-serif" font-size="12">"#
-    );
-    let _ = writeln!(s, r#"<rect width="100%" height="100%" fill="white"/>"#);
+    let mut s = Svg::new(width, PANEL_H);
     for (i, scene) in scenes.iter().enumerate() {
         let these: Vec<&Run> = runs
             .iter()
@@ -73,11 +67,10 @@ pub fn draw(runs: &[Run], size: usize) -> String {
             .collect();
         panel(&mut s, &these, scene, size, PANEL_W * i as f64);
     }
-    s.push_str("</svg>\n");
-    s
+    s.finish()
 }
 
-fn panel(s: &mut String, runs: &[&Run], scene: &str, size: usize, x0: f64) {
+fn panel(s: &mut Svg, runs: &[&Run], scene: &str, size: usize, x0: f64) {
     let times = runs
         .iter()
         .flat_map(|r| r.samples.iter().map(|p| p.seconds))
@@ -96,90 +89,57 @@ fn panel(s: &mut String, runs: &[&Run], scene: &str, size: usize, x0: f64) {
     };
     let (l, r) = (ax.px(10f64.powi(lo)), ax.px(10f64.powi(hi)));
     let (top, bottom) = (ax.py(1.0), ax.py(10f64.powi(Y_DECADES.0)));
-    let _ = writeln!(
-        s,
-        r##"<rect x="{l}" y="{top}" width="{}" height="{}" fill="none" stroke="#444"/>"##,
-        r - l,
-        bottom - top
-    );
+    s.rect((l, top), (r - l, bottom - top), "none", "#444");
     for d in lo..=hi {
         let x = ax.px(10f64.powi(d));
-        let _ = writeln!(
-            s,
-            r##"<line x1="{x}" y1="{top}" x2="{x}" y2="{bottom}" stroke="#ddd"/>"##
-        );
-        let _ = writeln!(
-            s,
-            r#"<text x="{x}" y="{}" text-anchor="middle">1e{d}</text>"#,
-            bottom + 16.0
+        s.line((x, top), (x, bottom), "#ddd", "");
+        s.text(
+            (x, bottom + 16.0),
+            r#" text-anchor="middle""#,
+            &format!("1e{d}"),
         );
     }
     for d in (Y_DECADES.0..=Y_DECADES.1).step_by(2) {
         let y = ax.py(10f64.powi(d));
-        let _ = writeln!(
-            s,
-            r##"<line x1="{l}" y1="{y}" x2="{r}" y2="{y}" stroke="#ddd"/>"##
-        );
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{}" text-anchor="end">1e{d}</text>"#,
-            l - 6.0,
-            y + 4.0
+        s.line((l, y), (r, y), "#ddd", "");
+        s.text(
+            (l - 6.0, y + 4.0),
+            r#" text-anchor="end""#,
+            &format!("1e{d}"),
         );
     }
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="{}" text-anchor="middle">run time, s</text>"#,
-        f64::midpoint(l, r),
-        bottom + 36.0
+    s.text(
+        (f64::midpoint(l, r), bottom + 36.0),
+        r#" text-anchor="middle""#,
+        "run time, s",
     );
-    let _ = writeln!(
-        s,
-        r#"<text transform="translate({},{}) rotate(-90)" text-anchor="middle">relative energy-norm error</text>"#,
-        x0 + 18.0,
-        f64::midpoint(top, bottom)
+    s.vertical_text(
+        (x0 + 18.0, f64::midpoint(top, bottom)),
+        "relative energy-norm error",
     );
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="24" text-anchor="middle" font-size="14">{scene} crack, {size}×{size} mesh</text>"#,
-        f64::midpoint(l, r)
+    s.text(
+        (f64::midpoint(l, r), 24.0),
+        r#" text-anchor="middle" font-size="14""#,
+        &format!("{scene} crack, {size}×{size} mesh"),
     );
     for (k, run) in runs.iter().enumerate() {
         let c = colour(run.solver);
         if run.solver == "direct" {
             if let Some(p) = run.samples.first() {
                 let x = ax.px(p.seconds);
-                let _ = writeln!(
-                    s,
-                    r#"<line x1="{x}" y1="{top}" x2="{x}" y2="{bottom}" stroke="{c}" stroke-dasharray="5,4"/>"#
-                );
+                s.line((x, top), (x, bottom), c, r#" stroke-dasharray="5,4""#);
             }
         } else {
-            let pts: Vec<String> = run
+            let pts: Vec<(f64, f64)> = run
                 .samples
                 .iter()
                 .filter(|p| p.seconds > 0.0)
-                .map(|p| format!("{:.1},{:.1}", ax.px(p.seconds), ax.py(p.energy)))
+                .map(|p| (ax.px(p.seconds), ax.py(p.energy)))
                 .collect();
-            let _ = writeln!(
-                s,
-                r#"<polyline points="{}" fill="none" stroke="{c}" stroke-width="2"/>"#,
-                pts.join(" ")
-            );
+            s.polyline(&pts, c, r#" stroke-width="2""#);
         }
         let ly = bottom - 16.0 * (runs.len() - k) as f64; // lower left: empty on these plots
-        let _ = writeln!(
-            s,
-            r#"<line x1="{}" y1="{ly}" x2="{}" y2="{ly}" stroke="{c}" stroke-width="2"/>"#,
-            l + 12.0,
-            l + 37.0
-        );
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{}">{}</text>"#,
-            l + 42.0,
-            ly + 4.0,
-            run.solver
-        );
+        s.line((l + 12.0, ly), (l + 37.0, ly), c, r#" stroke-width="2""#);
+        s.text((l + 42.0, ly + 4.0), "", run.solver);
     }
 }

@@ -20,6 +20,7 @@ pub use file::{
     Fix, GrowthControl, GrowthSpec, IntactRock, Material, MeshSpec, Ordering, Plane, PointSupport,
     Sampling, SceneFile, ShearStrength, SideBc, SolverKind, SolverSpec, Specimen,
 };
+pub use param::json_number;
 pub use resume::{Lineage, Part, Resume, RockStarts};
 pub use valid::Scene;
 pub(crate) use validate::fmt_point;

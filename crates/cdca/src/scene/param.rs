@@ -1,5 +1,7 @@
-//! One numeric field of a scene, named by its dotted path, for parameter
-//! studies (`cdca sweep`, the workbench's Study tab).
+//! Fields of a scene named by their dotted paths, for parameter studies
+//! (`cdca sweep`, `cdca study`, the workbench's Study tab): one number
+//! ([`Scene::with_param`]), or any JSON values at once
+//! ([`SceneFile::with_values`]: a solver's name, a list of cracks).
 
 use serde_json::Value;
 
@@ -13,67 +15,116 @@ impl Scene {
     /// `path` is dotted, with array indices as numbers:
     /// `cracks.0.friction`, `boundary.right.normal`, `criterion.r0`. The
     /// field must exist in the scene file's layout (an optional field that
-    /// is unset counts as existing).
+    /// is unset counts as existing). A whole number is written as an
+    /// integer, so that integer fields (`mesh.nx`, `growth.max_steps`) take
+    /// it too; a float field reads it as the same number.
     pub fn with_param(&self, path: &str, value: f64) -> Result<Self, SceneError> {
-        let bad = |reason: &str| SceneError::invalid(path, value, reason);
         if !value.is_finite() {
-            return Err(bad("must be a finite number"));
+            return Err(SceneError::invalid(path, value, "must be a finite number"));
         }
-        let mut root = serde_json::to_value(self).map_err(|e| SceneError::Write(e.to_string()))?;
-        let mut node = &mut root;
-        let segments: Vec<&str> = path.split('.').collect();
-        for (i, seg) in segments.iter().enumerate() {
-            let last = i + 1 == segments.len();
-            node = match node {
-                Value::Array(items) => {
-                    let k: usize = seg.parse().map_err(|_| bad("expects an index here"))?;
-                    let len = items.len();
-                    items
-                        .get_mut(k)
-                        .ok_or_else(|| bad(&format!("index {k} out of range (0..{len})")))?
-                }
-                Value::Object(map) => {
-                    // a tagged variant (a side's `kind`) says which it is
-                    let why = match map.get("kind").and_then(Value::as_str) {
-                        Some(kind) => format!(
-                            "no field `{seg}` here: `{}` is of kind `{kind}`",
-                            segments[..i].join(".")
-                        ),
-                        None => format!("no field `{seg}` here"),
-                    };
-                    map.get_mut(*seg).ok_or_else(|| bad(&why))?
-                }
-                _ => return Err(bad(&format!("`{seg}` is inside a number"))),
-            };
-            if last && !(node.is_number() || node.is_null()) {
-                return Err(bad("is not a number field"));
-            }
-        }
-        *node = Value::from(value);
-        let file: SceneFile =
-            serde_json::from_value(root).map_err(|e| SceneError::Parse(e.to_string()))?;
-        Self::try_from(file)
+        self.has_field(path, true).map_err(|e| match e {
+            SceneError::Invalid { field, reason, .. } => SceneError::Invalid {
+                field,
+                value: value.to_string(),
+                reason,
+            },
+            e => e,
+        })?;
+        Self::try_from(self.with_values(&[(path, json_number(value))])?)
+    }
+}
+
+/// `value` as JSON: an integer when it is a whole number that an `i64`
+/// holds exactly (−0 stays a float, to keep its sign).
+pub fn json_number(value: f64) -> Value {
+    const EXACT: f64 = 9_007_199_254_740_992.0; // 2^53
+    if value.fract() == 0.0 && value.abs() < EXACT && !(value == 0.0 && value.is_sign_negative()) {
+        Value::from(value as i64)
+    } else {
+        Value::from(value)
     }
 }
 
 impl SceneFile {
+    /// Checks that `path` names a field of this scene's layout (an unset
+    /// optional one included), and with `number` a number field. The error
+    /// names the path and why it names nothing.
+    pub fn has_field(&self, path: &str, number: bool) -> Result<(), SceneError> {
+        let mut root = serde_json::to_value(self).map_err(|e| SceneError::Write(e.to_string()))?;
+        let node = node_at(&mut root, path).map_err(|why| SceneError::invalid(path, "–", why))?;
+        if number && !(node.is_number() || node.is_null()) {
+            return Err(SceneError::invalid(path, "–", "is not a number field"));
+        }
+        Ok(())
+    }
+
+    /// The file with each field `path` set to its JSON value, in order,
+    /// not checked (see [`Scene::try_from`]): a value of the wrong type is
+    /// an error naming its path.
+    pub fn with_values(&self, values: &[(&str, Value)]) -> Result<Self, SceneError> {
+        let mut root = serde_json::to_value(self).map_err(|e| SceneError::Write(e.to_string()))?;
+        for (path, value) in values {
+            let node =
+                node_at(&mut root, path).map_err(|why| SceneError::invalid(*path, value, why))?;
+            *node = value.clone();
+        }
+        serde_json::from_value(root).map_err(|e| {
+            // the one that does not fit, found by setting each alone
+            let culprit = values
+                .iter()
+                .find(|(p, v)| values.len() == 1 || self.with_values(&[(p, v.clone())]).is_err());
+            match culprit {
+                Some((path, value)) => {
+                    SceneError::invalid(*path, value, format!("does not fit the field: {e}"))
+                }
+                None => SceneError::Parse(e.to_string()),
+            }
+        })
+    }
+
     /// The paths among `paths` that name a number field of this scene (an
     /// unset optional one included), the fields [`Scene::with_param`] can
     /// set: `boundary.right.normal` only where the right side is a
     /// traction side, `cracks.0.friction` only with a crack.
     pub fn params<'a>(&self, paths: &[&'a str]) -> Vec<&'a str> {
-        let Ok(root) = serde_json::to_value(self) else {
-            return Vec::new();
-        };
         paths
             .iter()
             .copied()
-            .filter(|p| {
-                root.pointer(&format!("/{}", p.replace('.', "/")))
-                    .is_some_and(|n| n.is_number() || n.is_null())
-            })
+            .filter(|p| self.has_field(p, true).is_ok())
             .collect()
     }
+}
+
+/// The node at the dotted `path` in `root`, or why there is none.
+fn node_at<'a>(root: &'a mut Value, path: &str) -> Result<&'a mut Value, String> {
+    let mut node = root;
+    let segments: Vec<&str> = path.split('.').collect();
+    for (i, seg) in segments.iter().enumerate() {
+        node = match node {
+            Value::Array(items) => {
+                let k: usize = seg
+                    .parse()
+                    .map_err(|_| "expects an index here".to_owned())?;
+                let len = items.len();
+                items
+                    .get_mut(k)
+                    .ok_or_else(|| format!("index {k} out of range (0..{len})"))?
+            }
+            Value::Object(map) => {
+                // a tagged variant (a side's `kind`) says which it is
+                let why = match map.get("kind").and_then(Value::as_str) {
+                    Some(kind) => format!(
+                        "no field `{seg}` here: `{}` is of kind `{kind}`",
+                        segments[..i].join(".")
+                    ),
+                    None => format!("no field `{seg}` here"),
+                };
+                map.get_mut(*seg).ok_or(why)?
+            }
+            _ => return Err(format!("`{seg}` is inside a number")),
+        };
+    }
+    Ok(node)
 }
 
 #[cfg(test)]
@@ -154,6 +205,41 @@ mod tests {
         file.cracks.clear();
         file.boundary.right = crate::scene::SideBc::Free;
         assert_eq!(file.params(&paths), ["criterion.r0"]);
+    }
+
+    /// Integer fields take whole numbers; any JSON value goes where its
+    /// type fits, and one that does not names its path.
+    #[test]
+    fn whole_numbers_set_integer_fields_and_json_values_name_their_path() {
+        let s = base();
+        assert_eq!(s.with_param("mesh.nx", 12.0).map(|t| t.mesh.nx), Ok(12));
+        let e = s.with_param("mesh.nx", 12.5).expect_err("not whole");
+        assert!(e.to_string().contains("`mesh.nx` = 12.5"), "{e}");
+        assert_eq!(
+            json_number(-0.0).as_f64().map(f64::is_sign_negative),
+            Some(true)
+        );
+        let file = s
+            .with_values(&[
+                ("solver.kind", Value::from("cg")),
+                ("growth.max_steps", Value::from(3)),
+            ])
+            .expect("fits");
+        assert_eq!(
+            (file.solver.kind, file.growth.max_steps),
+            (crate::scene::SolverKind::Cg, 3)
+        );
+        let e = s
+            .with_values(&[
+                ("growth.max_steps", Value::from(3)),
+                ("solver.kind", Value::from("fast")),
+            ])
+            .expect_err("no such solver");
+        assert!(
+            e.to_string()
+                .starts_with("scene field `solver.kind` = \"fast\""),
+            "{e}"
+        );
     }
 
     /// A field of another variant names the variant the scene has.

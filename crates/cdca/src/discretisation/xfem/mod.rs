@@ -441,11 +441,29 @@ impl Xfem {
 /// start (about 0.2 ms of element integration).
 const MIN_POINTS_PER_THREAD: usize = 500;
 
-/// Threads the element integration uses: the machine's, at most four
-/// (one where threads are not available, as in a browser).
+/// Threads the element integration uses: as set by
+/// [`set_integration_threads`], else the machine's, at most four (one
+/// where threads are not available, as in a browser).
 fn worker_threads() -> usize {
     static THREADS: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
-    *THREADS.get_or_init(|| std::thread::available_parallelism().map_or(1, |n| n.get().min(4)))
+    match THREADS_SET.load(std::sync::atomic::Ordering::Relaxed) {
+        0 => *THREADS
+            .get_or_init(|| std::thread::available_parallelism().map_or(1, |n| n.get().min(4))),
+        n => n,
+    }
+}
+
+/// The cap set by [`set_integration_threads`] (0: none).
+static THREADS_SET: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+/// Caps the threads of the element integration at `n` (0: the machine's,
+/// at most four) for every simulation of the process from now on: a
+/// caller that runs simulations side by side (`cdca study --jobs N`) keeps
+/// jobs × threads within the cores. The stiffness does not depend on it
+/// (see [`Xfem::integrate`]). The solver's other parts use one thread
+/// (faer is built without its thread pool, and runs with `Par::Seq`).
+pub fn set_integration_threads(n: usize) {
+    THREADS_SET.store(n, std::sync::atomic::Ordering::Relaxed);
 }
 
 /// Per crack of `new`: whether its enrichment functions may differ from

@@ -304,8 +304,7 @@ fn lambda_cr_is_the_threshold_load() {
 /// the λ_cr and the grown tips agree to the last bit.
 #[test]
 fn growth_does_not_depend_on_the_slice_size() {
-    let text = include_str!("../../../assets/scenes/closed_crack_biaxial.json");
-    let mut closed = Scene::from_json(text).expect("scene").into_file();
+    let mut closed = common::bundled("closed_crack_biaxial");
     closed.solver.kind = cdca::scene::SolverKind::Multigrid;
     closed.solver.tolerance = 1e-9;
     for (scene, steps) in [
@@ -465,8 +464,7 @@ fn grow_until_linked(name: &str, mut scene: SceneFile, max_steps: usize) -> Simu
 /// every step converged.
 #[test]
 fn stepped_flaws_coalesce() {
-    let text = include_str!("../../../assets/scenes/specimen_two_flaws_stepped.json");
-    let bundled = Scene::from_json(text).expect("scene").into_file();
+    let bundled = common::bundled("specimen_two_flaws_stepped");
     let held_out = flaw_pair((0.01437, 0.01281), [0.0012, 0.0046]);
     let mut at = Vec::new();
     for (name, scene) in [("bundled", bundled), ("held out", held_out)] {
@@ -521,8 +519,7 @@ fn flaws_overlapping_across_the_load_coalesce() {
 /// (docs/fracture-model.md, *Growth to failure*).
 #[test]
 fn overlapping_flaws_coalesce() {
-    let text = include_str!("../../../assets/scenes/specimen_two_flaws_overlapping.json");
-    let bundled = Scene::from_json(text).expect("scene").into_file();
+    let bundled = common::bundled("specimen_two_flaws_overlapping");
     let held_out = flaw_pair((0.01391, 0.01537), [0.0026, -0.0015]);
     let mut at = Vec::new();
     for (name, scene) in [("bundled", bundled), ("held out", held_out)] {
@@ -552,8 +549,7 @@ fn overlapping_flaws_coalesce() {
 /// largest count among 1159 converged trials on 16 held-out pairs was 73).
 #[test]
 fn held_out_overlapping_pair_converges_to_failure() {
-    let text = include_str!("../../../assets/scenes/specimen_two_flaws_overlapping.json");
-    let mut scene = Scene::from_json(text).expect("scene").into_file();
+    let mut scene = common::bundled("specimen_two_flaws_overlapping");
     let half = 0.0015 * std::f64::consts::FRAC_1_SQRT_2;
     for (crack, (cx, cy)) in scene
         .cracks
@@ -613,8 +609,7 @@ fn element_reuse_after_growth_matches_a_fresh_build() {
 /// with friction (multigrid-CG), saved after 1 step.
 #[test]
 fn a_scene_saved_mid_growth_grows_the_same_next_steps() {
-    let text = include_str!("../../../assets/scenes/closed_crack_biaxial.json");
-    let mut closed = Scene::from_json(text).expect("scene").into_file();
+    let mut closed = common::bundled("closed_crack_biaxial");
     closed.solver.kind = cdca::scene::SolverKind::Multigrid;
     closed.solver.tolerance = 1e-9;
     for (scene, before, after) in [
@@ -687,8 +682,7 @@ fn the_end_of_a_run_is_solved_at_the_last_load() {
 /// grew.
 #[test]
 fn a_scene_saved_after_a_junction_grows_the_same_next_steps() {
-    let text = include_str!("../../../assets/scenes/specimen_two_flaws_stepped.json");
-    let file = Scene::from_json(text).expect("scene").into_file();
+    let file = common::bundled("specimen_two_flaws_stepped");
     let mut a = Simulation::new(valid(file)).expect("valid");
     while junctions(&a) == 0 {
         assert!(
@@ -731,8 +725,7 @@ fn a_scene_saved_after_a_junction_grows_the_same_next_steps() {
 /// `violating` = 0).
 #[test]
 fn contact_iteration_settles_after_stick_slip_cycling() {
-    let text = include_str!("../../../assets/scenes/plate_45_biaxial_k0.1_mu0.5.json");
-    let scene = Scene::from_json(text).expect("scene").into_file();
+    let scene = common::bundled("plate_45_biaxial_k0.1_mu0.5");
     let mut sim = Simulation::new(valid(wings_only(scene))).expect("valid");
     for _ in 0..29 {
         let step = sim.grow_step().expect("step");

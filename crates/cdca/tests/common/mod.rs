@@ -7,13 +7,17 @@ pub mod docs_row;
 use cdca::Simulation;
 use cdca::report::SolveReport;
 use cdca::scene::{
-    Boundary, CrackSpec, CriterionSpec, Fix, GrowthSpec, Material, MeshSpec, Plane, PointSupport,
+    Boundary, CrackSpec, CriterionSpec, Fix, GrowthSpec, IntactRock, Material, MeshSpec, Plane,
+    PointSupport,
     Scene, SceneFile, SideBc, SolverSpec, Specimen,
 };
 
 pub const PI: f64 = std::f64::consts::PI;
 
-/// A `w × h` plate, steel-like, plane strain, no cracks, free sides.
+/// A `w × h` plate, steel-like, plane strain, no cracks, free sides,
+/// growing by the paper's model (`growth.intact_rock = "ignore"`: the
+/// tests of the tip and kink rules check them alone; tests/intact_rock.rs
+/// sets `"nucleate"`).
 pub fn plate(w: f64, h: f64, nx: usize, ny: usize) -> SceneFile {
     SceneFile {
         name: "test".into(),
@@ -47,7 +51,10 @@ pub fn plate(w: f64, h: f64, nx: usize, ny: usize) -> SceneFile {
             points: Vec::new(),
         },
         criterion: CriterionSpec::default(),
-        growth: GrowthSpec::default(),
+        growth: GrowthSpec {
+            intact_rock: IntactRock::Ignore,
+            ..GrowthSpec::default()
+        },
         solver: SolverSpec::default(),
     }
 }
@@ -102,16 +109,19 @@ pub fn valid(scene: SceneFile) -> Scene {
     Scene::try_from(scene).unwrap_or_else(|e| panic!("invalid test scene: {e}"))
 }
 
-/// A bundled scene's file (assets/scenes/NAME.json), checked, for editing.
+/// A bundled scene's file (assets/scenes/NAME.json), checked, for editing,
+/// growing by the paper's model (see [`plate`]).
 pub fn bundled(name: &str) -> SceneFile {
     let path = format!(
         "{}/../../assets/scenes/{name}.json",
         env!("CARGO_MANIFEST_DIR")
     );
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    Scene::from_json(&text)
+    let mut file = Scene::from_json(&text)
         .unwrap_or_else(|e| panic!("{path}: {e}"))
-        .into_file()
+        .into_file();
+    file.growth.intact_rock = IntactRock::Ignore;
+    file
 }
 
 /// Issue 17's flaw range: a 3.5 mm flaw at β = 30–60° (5° steps) with face

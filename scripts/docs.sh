@@ -9,13 +9,16 @@
 #     <!-- end:NAME -->
 # The rows are written by whatever measures them, one file per row, sorted
 # by file name: the tests (through crates/cdca/tests/support/docs_row.rs,
-# during `bash scripts/test.sh`) and the slow studies (held_out_study below).
+# during `bash scripts/test.sh`) and the slow studies (study_tables and
+# flaw_strength_table below).
 # The table of ignored tests is read from the sources here.
 #
 # Usage:
 #   bash scripts/docs.sh           the quick tables, then the slow ones
-#                                  (runs assets/studies/held_out_pairs.json
-#                                  with `cdca study`, 2 min on 2 cores)
+#                                  (runs the studies held_out_pairs.json,
+#                                  held_out_pairs_rock.json and
+#                                  flaw_strength.json with `cdca study`,
+#                                  about 8 min on 2 cores)
 #   bash scripts/docs.sh --quick   the quick tables: the rows the last
 #                                  `bash scripts/test.sh` wrote, and the
 #                                  ignored tests (runs the tests if no rows
@@ -38,7 +41,7 @@ esac
 target=${CARGO_TARGET_DIR:-target}
 rows=$target/docs
 quick=(verification transitions flaw-range-first-growth ignored-tests)
-slow=(held-out-pairs)
+slow=(held-out-pairs held-out-pairs-kinds held-out-pairs-rock held-out-pairs-rock-kinds flaw-strength)
 
 # The tests that are #[ignore]d, with the reason they give: one row each in
 # $rows/ignored-tests/.
@@ -69,20 +72,50 @@ ignored_tests() {
     done
 }
 
-# The held-out pairs' table (docs/fracture-model.md, *Coalescence*): the
-# study assets/studies/held_out_pairs.json, run afresh (its table's rows
-# are the code's of the day: a table left from other code is not resumed),
-# and the summary per layout that `cdca study` prints, one row file each.
-held_out_study() {
+# A study's tables (docs/fracture-model.md): the study STUDY run afresh
+# (its table's rows are the code's of the day: a table left from other
+# code is not resumed), and the summaries `cdca study` prints, one row file
+# each: the first table's rows under NAME, the second's (the first links by
+# the kinds of crack that made them) under NAME-kinds.
+study_tables() {
+    local study=$1 name=$2
     cargo build --release --workspace -q
     mkdir -p bench-out
-    local out=$rows/held-out-pairs
-    rm -rf "$out"
-    mkdir -p "$out"
-    rm -f bench-out/held_out_pairs.csv
-    "$target/release/cdca" study assets/studies/held_out_pairs.json \
-        --out bench-out/held_out_pairs.csv |
-        awk -v dir="$out" '/^\| / && !/^\| (layout|---) / { n++; print > sprintf("%s/%02d.md", dir, n) }'
+    rm -rf "$rows/$name" "$rows/$name-kinds"
+    mkdir -p "$rows/$name" "$rows/$name-kinds"
+    rm -f "bench-out/$name.csv"
+    "$target/release/cdca" study "$study" --out "bench-out/$name.csv" |
+        awk -v a="$rows/$name" -v b="$rows/$name-kinds" '
+            /^\| layout / { table++ }
+            /^\| / && !/^\| (layout|---) / {
+                n++
+                print > sprintf("%s/%02d.md", (table == 1 ? a : b), n)
+            }'
+}
+
+# The single-flaw strength table (docs/fracture-model.md, *The intact
+# rock*): the study assets/studies/flaw_strength.json run afresh, and per
+# flaw angle and face friction the peak over the uncracked specimen's
+# strength for each flaw length, and whether it falls as the flaw
+# lengthens.
+flaw_strength_table() {
+    study_tables assets/studies/flaw_strength.json flaw-strength-runs
+    rm -rf "$rows/flaw-strength"
+    mkdir -p "$rows/flaw-strength"
+    python3 - "bench-out/flaw-strength-runs.csv" "$rows/flaw-strength" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+lengths = sorted({float(r["flaws.length"]) for r in rows})
+for deg in sorted({float(r["flaws.angle_deg"]) for r in rows}):
+    for mu in sorted({float(r["flaws.friction"]) for r in rows}):
+        mine = {float(r["flaws.length"]): r for r in rows
+                if float(r["flaws.angle_deg"]) == deg and float(r["flaws.friction"]) == mu}
+        ratios = [float(mine[l]["strength_ratio"]) for l in lengths]
+        falls = all(b < a for a, b in zip(ratios, ratios[1:]))
+        cells = [f"{deg:g}°", f"{mu:g}"] + [f"{x:.3f}" for x in ratios] + \
+                [f"{max(ratios):.3f}", "yes" if falls else "no"]
+        open(f"{sys.argv[2]}/{deg:03.0f}-{mu:.1f}.md", "w").write("| " + " | ".join(cells) + " |\n")
+PY
 }
 
 # splice FILE NAME: the rows of table NAME put between its markers in FILE.
@@ -154,7 +187,9 @@ case "$mode" in
     ;;
 all)
     generate docs "${quick[@]}"
-    held_out_study
+    study_tables assets/studies/held_out_pairs.json held-out-pairs
+    study_tables assets/studies/held_out_pairs_rock.json held-out-pairs-rock
+    flaw_strength_table
     generate docs "${slow[@]}"
     ;;
 esac

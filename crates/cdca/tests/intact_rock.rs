@@ -13,7 +13,7 @@
 mod common;
 
 use cdca::Simulation;
-use cdca::report::{GrowthStepReport, Mode};
+use cdca::report::{GrowthStepReport, Mode, Outcome};
 use cdca::scene::{Fix, GrowthControl, IntactRock, Plane, PointSupport, SceneFile, SideBc};
 use common::docs_row::{sig, verification_row};
 use common::valid;
@@ -233,4 +233,132 @@ fn a_crack_started_in_shear_follows_the_turned_principal_axes() {
         &format!("plane within {}° of 27.5° off σ1", sig(worst, 2)),
         "7°",
     );
+}
+
+/// The uncracked specimen grown to the end: a band of cracks starts in
+/// shear at σ_c and at loads below it, and the bound on starts at one
+/// load (`⌈max(W, H)/2Δa⌉`: the band across the specimen's longer side)
+/// stops the run `unstable`, saying so, with the specimen's strength the
+/// rock's: the peak within the λ search's band (10⁻³) of the uncracked
+/// load factor.
+#[test]
+fn the_bound_on_starts_at_one_load_ends_an_uncracked_run_at_the_rocks_strength() {
+    let p = 10e6;
+    let mut sim = Simulation::new(valid(specimen(40, [0.0, -p, 0.0]))).expect("builds");
+    let (report, failed) = sim.grow_to_end();
+    assert!(failed.is_none(), "{failed:?}");
+    assert!(
+        report.steps.iter().all(|s| s.converged),
+        "every step converged"
+    );
+    assert_eq!(report.outcome, Outcome::Unstable);
+    let limit = report.start_limit.as_ref().expect("the bound stopped it");
+    // Δa = max(r_p, 3h): r_p = (K_IC/σ_t)²/2π = 0.94 mm, h = 1 mm
+    let da: f64 = 3.0 * 0.001;
+    let bound = (0.08 / (2.0 * da)).ceil() as usize;
+    assert_eq!(limit.starts, bound, "{limit:?}");
+    let strength = report.strength.as_ref().expect("a strength");
+    let ratio = strength.ratio.expect("the rock can fail");
+    assert!((ratio - 1.0).abs() <= 1e-3, "peak / intact = {ratio}");
+    assert!(
+        (strength.peak_stress - ucs()).abs() / ucs() < 2e-3,
+        "{strength:?}"
+    );
+}
+
+/// A scene without `growth.intact_rock` grows with `"nucleate"`, one that
+/// resumes a saved run (`growth.resume`) with `"ignore"`, so that a run
+/// saved before the field existed continues as it would have; the saver
+/// always writes the field.
+#[test]
+fn a_saved_run_without_the_field_keeps_the_papers_model() {
+    let plain = r#"{"specimen":{"width":0.03,"height":0.03},"mesh":{"nx":10,"ny":10},
+        "material":{"young":4.78e9}}"#;
+    let resumed = r#"{"specimen":{"width":0.03,"height":0.03},"mesh":{"nx":10,"ny":10},
+        "material":{"young":4.78e9},"growth":{"resume":{"steps":3,"load_factor":0.5}}}"#;
+    let a = cdca::Scene::from_json(plain).expect("valid");
+    let b = cdca::Scene::from_json(resumed).expect("valid");
+    assert_eq!(a.growth.intact_rock, IntactRock::Nucleate);
+    assert_eq!(b.growth.intact_rock, IntactRock::Ignore);
+    for (scene, name) in [(a, "nucleate"), (b, "ignore")] {
+        let json = scene.to_json().expect("json");
+        assert!(
+            json.contains(&format!("\"intact_rock\": \"{name}\"")),
+            "{json}"
+        );
+        let again = cdca::Scene::from_json(&json).expect("valid");
+        assert_eq!(again, scene, "round trip");
+    }
+}
+
+/// A run saved after a crack started in the intact rock continues as the
+/// uninterrupted run did, to the last bit: the default specimen (40 × 40,
+/// `"nucleate"`), saved after its first start, grown three more steps.
+#[test]
+fn a_scene_saved_after_a_start_in_the_intact_rock_grows_the_same_next_steps() {
+    let mut scene = common::bundled("specimen_single_flaw");
+    scene.growth.intact_rock = IntactRock::Nucleate;
+    scene.mesh.nx = 40;
+    scene.mesh.ny = 40;
+    let mut a = Simulation::new(valid(scene)).expect("builds");
+    let mut steps = 0;
+    while a.history().iter().all(|s| s.nucleated.is_empty()) {
+        a.grow_step().expect("step");
+        steps += 1;
+        assert!(
+            steps < 20,
+            "a crack starts in the intact rock within 20 steps"
+        );
+    }
+    let saved = a.scene().to_json().expect("json");
+    let reopened = cdca::Scene::from_json(&saved).expect("the saved scene parses");
+    let resume = reopened.growth.resume.as_ref().expect("growth.resume");
+    assert!(
+        resume.rock_starts.is_some_and(|r| r.at_peak >= 1),
+        "{resume:?}"
+    );
+    assert_eq!(reopened.growth.intact_rock, IntactRock::Nucleate);
+    let mut b = Simulation::new(reopened).expect("builds");
+    for _ in 0..3 {
+        let (x, y) = (a.grow_step().expect("step"), b.grow_step().expect("step"));
+        assert_eq!(x.step, y.step);
+        assert_eq!(x.load_factor, y.load_factor);
+        assert_eq!(x.grown, y.grown);
+        assert_eq!(x.nucleated, y.nucleated);
+        assert_eq!(x.rock_site, y.rock_site);
+    }
+    assert_eq!(a.cracks(), b.cracks());
+}
+
+/// The paper's biaxial plates at k ≥ 0.2 (`N_φ k` = 1.43 ≥ 1: their far
+/// field can never fail) grow the same first step under `"nucleate"` as
+/// under `"ignore"`, to the last bit (the three that grow below their
+/// load; μ ≥ 0.67 and k = 0.3 grow nothing either way).
+#[test]
+fn the_papers_confined_plates_grow_the_same_first_step() {
+    for name in [
+        "plate_45_biaxial_k0.2_mu0.32",
+        "plate_45_biaxial_k0.2_mu0.48",
+        "plate_45_biaxial_k0.2_mu0.5",
+    ] {
+        let first = |model: IntactRock| {
+            let mut scene = common::bundled(name);
+            scene.growth.intact_rock = model;
+            let mut sim = Simulation::new(valid(scene)).expect("builds");
+            loop {
+                let s = sim.grow_step().expect("step");
+                if !(s.grown.is_empty() && s.nucleated.is_empty()) {
+                    return s;
+                }
+                assert!(sim.growth_finished().is_none(), "{name}: something grows");
+            }
+        };
+        let (paper, rock) = (first(IntactRock::Ignore), first(IntactRock::Nucleate));
+        assert!(rock.nucleated.is_empty(), "{name}: a tip grows first");
+        assert_eq!(
+            (paper.step, paper.load_factor, &paper.grown),
+            (rock.step, rock.load_factor, &rock.grown),
+            "{name}"
+        );
+    }
 }

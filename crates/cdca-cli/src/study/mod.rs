@@ -197,6 +197,13 @@ fn report(
     for (_, row) in cdca::study::summary::by_layout(table) {
         text.push_str(&row);
     }
+    if table.column("link_joins").is_some() {
+        text.push('\n');
+        text.push_str(cdca::study::summary::KIND_HEADER);
+        for (_, row) in cdca::study::summary::by_crack_kind(table) {
+            text.push_str(&row);
+        }
+    }
     // the table is on disk: a closed stdout (`| head`) loses the summary only
     let _ = std::io::stdout().lock().write_all(text.as_bytes());
     let points = |pick: &dyn Fn(usize) -> bool| -> Vec<String> {

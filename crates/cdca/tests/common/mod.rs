@@ -8,8 +8,7 @@ use cdca::Simulation;
 use cdca::report::SolveReport;
 use cdca::scene::{
     Boundary, CrackSpec, CriterionSpec, Fix, GrowthSpec, IntactRock, Material, MeshSpec, Plane,
-    PointSupport,
-    Scene, SceneFile, SideBc, SolverSpec, Specimen,
+    PointSupport, Scene, SceneFile, SideBc, SolverSpec, Specimen,
 };
 
 pub const PI: f64 = std::f64::consts::PI;

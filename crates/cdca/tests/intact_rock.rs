@@ -362,3 +362,72 @@ fn the_papers_confined_plates_grow_the_same_first_step() {
         );
     }
 }
+
+/// Flaws whose wings start below 0.6 σ_c under the paper's model still
+/// grow their two tension wings first when the intact rock can fail: four
+/// held-out flaws through the default specimen (60 × 60, off the grid:
+/// 3 mm at 45°, μ 0; 5 mm at 45°, μ 0.3; 7 mm at 60°, μ 0.3; 10 mm at
+/// 30°, μ 0.3; from `assets/studies/flaw_strength.json`), their first two
+/// steps under `"nucleate"`: a tension wing at each end, no crack started
+/// in the intact rock, at the loads of `"ignore"` to the last bit.
+#[test]
+fn a_flaw_with_early_wings_still_grows_them_first() {
+    let sigma_c = 80.24e6;
+    let mut slowest = 0.0_f64;
+    for (length, deg, mu) in [
+        (0.003, 45.0, 0.0),
+        (0.005, 45.0, 0.3),
+        (0.007, 60.0, 0.3),
+        (0.01, 30.0, 0.3),
+    ] {
+        let first_two = |model: IntactRock| {
+            let mut scene = common::bundled("specimen_single_flaw");
+            let h = 0.03 / 60.0;
+            let mut crack =
+                common::centre_crack(0.015 + 0.37 * h, 0.015 + 0.21 * h, 0.5 * length, deg);
+            crack.friction = mu;
+            scene.cracks = vec![crack];
+            scene.growth.intact_rock = model;
+            let mut sim = Simulation::new(valid(scene)).expect("builds");
+            [
+                sim.grow_step().expect("step"),
+                sim.grow_step().expect("step"),
+            ]
+        };
+        let (paper, rock) = (
+            first_two(IntactRock::Ignore),
+            first_two(IntactRock::Nucleate),
+        );
+        let wing_stress = paper[0].load_factor * 100e6;
+        assert!(
+            wing_stress < 0.6 * sigma_c,
+            "{length} m at {deg}°: wings at {wing_stress}"
+        );
+        slowest = slowest.max(wing_stress / sigma_c);
+        let mut ends = Vec::new();
+        for (p, r) in paper.iter().zip(&rock) {
+            assert!(
+                r.nucleated.is_empty(),
+                "{length} m at {deg}°: step {} started a crack",
+                r.step
+            );
+            assert_eq!((p.load_factor, &p.grown), (r.load_factor, &r.grown));
+            assert_eq!(r.grown.len(), 1);
+            assert_eq!(r.grown[0].mode, Mode::Tension);
+            ends.push(r.grown[0].tip);
+        }
+        ends.sort_unstable();
+        assert_eq!(ends, [0, 1], "{length} m at {deg}°: a wing at each end");
+    }
+    verification_row(
+        "intact_rock",
+        "a_flaw_with_early_wings_still_grows_them_first",
+        "flaws whose wings start below 0.6 σ_c (paper's model) with the intact rock failing",
+        "60 × 60",
+        &format!(
+            "4 of 4: a tension wing at each end first, as under \"ignore\" (wings at ≤ {} σ_c)",
+            sig(slowest, 2)
+        ),
+        "both first steps tension wings, no start",
+    );
+}

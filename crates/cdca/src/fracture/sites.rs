@@ -226,8 +226,9 @@ impl Readings {
                 .fold(0.0, f64::max)
     }
 
-    /// Factor from the solve's load to `lambda`.
-    fn scale(&self, lambda: f64) -> f64 {
+    /// Factor from the solve's load to `lambda` (0 for readings of no
+    /// load).
+    pub fn scale(&self, lambda: f64) -> f64 {
         if self.lambda > 0.0 {
             lambda / self.lambda
         } else {
@@ -331,10 +332,9 @@ pub fn start_at(
             0
         } else if along[1] > along[0] * (1.0 + band) {
             1
-        } else if upper_x(planes[0]) <= upper_x(planes[1]) {
-            0
         } else {
-            1
+            // tied: the plane whose upper end lies further left
+            usize::from(upper_x(planes[0]) > upper_x(planes[1]))
         };
         (Mode::Shear, planes[pick], half_length)
     };
@@ -493,10 +493,10 @@ mod tests {
         let mut u = vec![0.0; x.n_free()];
         for node in 0..x.mesh.node_count() {
             let v = field(x.mesh.node_pos(node));
-            for c in 0..2 {
+            for (c, value) in v.into_iter().enumerate() {
                 let f = x.dofs.std_free(node, c);
                 if f != FIXED {
-                    u[f as usize] = v[c];
+                    u[f as usize] = value;
                 }
             }
         }

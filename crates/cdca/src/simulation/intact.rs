@@ -66,7 +66,7 @@ impl Simulation {
     pub(super) fn rock_site(&self) -> Option<RockSiteReport> {
         let readings = self.scratch.rock.as_ref()?;
         let (site, _) = readings.critical(&self.model.mesh, LAMBDA_TOLERANCE)?;
-        let scale = self.state.lambda / readings.lambda;
+        let scale = readings.scale(self.state.lambda);
         let c = element_centre(&self.model.mesh, site.element as usize);
         let (tension, shear) = (site.tension * scale, site.shear * scale);
         Some(RockSiteReport {
@@ -97,7 +97,7 @@ impl Simulation {
             return None;
         }
         let (site, tied) = readings.critical(mesh, LAMBDA_TOLERANCE)?;
-        let scale = self.state.lambda / readings.lambda;
+        let scale = readings.scale(self.state.lambda);
         let utilisation = site.utilisation() * scale;
         let mut at_load = *site;
         at_load.tension *= scale;

@@ -143,6 +143,9 @@ pub struct WorkbenchApp {
     pub(crate) waiting: Option<Waiting>,
     /// The path field shown where no file dialog could open.
     pub(crate) path_prompt: Option<PathPrompt>,
+    /// The folder last saved to or opened from: where the next Save and
+    /// Open start.
+    pub(crate) last_folder: Option<std::path::PathBuf>,
     /// The scene as last opened (the default file name says `_edited` once
     /// the scene differs from it).
     pub(crate) opened_scene: SceneFile,
@@ -198,6 +201,7 @@ impl WorkbenchApp {
             started: false,
             waiting: None,
             path_prompt: None,
+            last_folder: None,
             opened_scene,
             last_edited_crack: None,
             dragging: false,
@@ -698,6 +702,7 @@ impl WorkbenchApp {
         let view = AppView {
             scene: &self.scene,
             scene_source: &self.scene_source,
+            scene_edited: self.scene != self.opened_scene,
             solution: self.runner.view(),
             run,
             can_undo: self.undo.can_undo(),
@@ -835,7 +840,7 @@ impl WorkbenchApp {
         match crate::export::png_bytes(&cropped) {
             Ok(bytes) => {
                 let name = format!("{}.png", self.file_stem());
-                self.save_bytes(&name, ("PNG image", "png"), bytes);
+                self.save_bytes(&name, ("PNG image", "png"), bytes, false);
             }
             Err(e) => self.message = Some(Message::Error(e)),
         }
@@ -849,6 +854,12 @@ impl WorkbenchApp {
     /// The path field shown where no file dialog could open: its text.
     pub fn typed_path(&self) -> Option<&str> {
         self.path_prompt.as_ref().map(|p| p.path.as_str())
+    }
+    /// Types `path` into the path field, when it is shown.
+    pub fn set_typed_path(&mut self, path: &str) {
+        if let Some(p) = self.path_prompt.as_mut() {
+            path.clone_into(&mut p.path);
+        }
     }
 }
 
@@ -958,7 +969,11 @@ mod tests {
         used.extend("àéîõüñçßøåæœšžčłğı ΑΩαω АЯая €№™∞≈≠±".chars());
         let ctx = egui::Context::default();
         ctx.set_fonts(fonts());
-        let _ = ctx.run_ui(egui::RawInput::default(), |_| {});
+        // the font atlas's first upload, not applied here: cleared, as
+        // epaint's debug build refuses to drop it unapplied
+        ctx.run_ui(egui::RawInput::default(), |_| {})
+            .textures_delta
+            .clear();
         let mut missing = Vec::new();
         ctx.fonts_mut(|f| {
             for family in [egui::FontFamily::Proportional, egui::FontFamily::Monospace] {

@@ -69,7 +69,7 @@ impl WorkbenchApp {
             }
             Command::OpenDialog => {
                 let picked = if self.options.file_dialogs {
-                    io::open_scene_dialog()
+                    io::open_scene_dialog(self.last_folder.as_deref())
                 } else {
                     Ok(io::Picked::NoDialog)
                 };
@@ -79,7 +79,7 @@ impl WorkbenchApp {
                     Ok(io::Picked::NoDialog) => {
                         self.path_prompt = Some(PathPrompt {
                             action: PromptAction::Open,
-                            path: io::default_path(""),
+                            path: io::default_path("", self.last_folder.as_deref()),
                         });
                     }
                     Err(e) => self.message = Some(Message::Error(e)),
@@ -102,8 +102,21 @@ impl WorkbenchApp {
             }
             Command::Solve => {
                 if self.ensure_simulation() {
-                    let r = self.runner.solve();
-                    self.show_error(r);
+                    // after growth it solves the grown cracks, at full load
+                    let grown = self
+                        .runner
+                        .simulation()
+                        .is_some_and(|s| !s.history().is_empty());
+                    let steps = self.runner.view().steps_done;
+                    match self.runner.solve() {
+                        Ok(()) if grown => {
+                            self.message = Some(Message::Info(format!(
+                                "Solving the cracks as grown (after growth step {steps}) at the \
+                                 scene's full load, λ = 1. The run's steps stay in the plots."
+                            )));
+                        }
+                        r => self.show_error(r),
+                    }
                 }
             }
             Command::Step => {
@@ -305,13 +318,18 @@ impl WorkbenchApp {
 
     fn auto_solve(&mut self) {
         if self.options.auto_solve && self.runner.solve_is_quick(&self.scene) {
-            if self.runner.is_stale() || self.runner.simulation().is_none() {
-                self.rebuild();
-            }
-            if self.runner.simulation().is_some() {
-                let r = self.runner.solve();
-                self.show_error(r);
-            }
+            self.solve_scene();
+        }
+    }
+
+    /// Solves the scene now (building its simulation first if needed).
+    fn solve_scene(&mut self) {
+        if self.runner.is_stale() || self.runner.simulation().is_none() {
+            self.rebuild();
+        }
+        if self.runner.simulation().is_some() {
+            let r = self.runner.solve();
+            self.show_error(r);
         }
     }
 
@@ -379,7 +397,17 @@ impl WorkbenchApp {
         self.message = None;
         self.runner.forget_contact();
         self.no_tip_wanted = false;
+        // a finished study's results belong to the scene it varied
+        if self.study.as_ref().is_some_and(Study::finished) {
+            self.study = None;
+        }
         self.scene_changed(false);
+        // an opened scene is shown solved whatever its size (an edit is
+        // re-solved by itself only when that is quick): in slices, so no
+        // frame waits for it
+        if self.options.auto_solve && !self.runner.is_running() && self.runner.checked().is_ok() {
+            self.solve_scene();
+        }
     }
 
     /// Opens the scene of a shared link; a link without a valid scene opens
@@ -593,32 +621,61 @@ impl WorkbenchApp {
             }
         };
         match result {
-            Ok((name, filter, bytes)) => self.save_bytes(&name, filter, bytes),
+            Ok((name, filter, bytes)) => {
+                self.save_bytes(&name, filter, bytes, what == Export::Scene);
+            }
             Err(e) => self.message = Some(Message::Error(e)),
         }
     }
 
     /// Saves `bytes` through the file dialog (named `name` at first), or,
-    /// where no dialog can open, asks for a path above the canvas.
-    pub(crate) fn save_bytes(&mut self, name: &str, filter: (&str, &str), bytes: Vec<u8>) {
+    /// where no dialog can open, asks for a path above the canvas; the
+    /// scene (`scene`) is then written as it stands when the path is used.
+    pub(crate) fn save_bytes(
+        &mut self,
+        name: &str,
+        filter: (&str, &str),
+        bytes: Vec<u8>,
+        scene: bool,
+    ) {
         let picked = if self.options.file_dialogs {
-            io::save_dialog(name, filter, &bytes)
+            io::save_dialog(name, filter, &bytes, self.last_folder.as_deref())
         } else {
             Ok(io::Picked::NoDialog)
         };
         match picked {
-            Ok(io::Picked::Chosen(path)) => {
-                self.message = Some(Message::Info(format!("Saved {path}")));
-            }
+            Ok(io::Picked::Chosen(path)) => self.saved(&path, scene),
             Ok(io::Picked::Cancelled) => {}
             Ok(io::Picked::NoDialog) => {
+                let action = if scene {
+                    PromptAction::SaveScene
+                } else {
+                    PromptAction::Save { bytes }
+                };
                 self.path_prompt = Some(PathPrompt {
-                    action: PromptAction::Save { bytes },
-                    path: io::default_path(name),
+                    action,
+                    path: io::default_path(name, self.last_folder.as_deref()),
                 });
             }
             Err(e) => self.message = Some(Message::Error(e)),
         }
+    }
+
+    /// Says where a file went (for the scene, after which growth step),
+    /// and remembers its folder for the next Save and Open.
+    fn saved(&mut self, path: &str, scene: bool) {
+        let steps = self.runner.view().steps_done;
+        let what = if scene && steps > 0 {
+            format!(": the scene after growth step {steps}")
+        } else {
+            String::new()
+        };
+        self.message = Some(Message::Info(format!("Saved {path}{what}")));
+        self.last_folder = std::path::Path::new(path)
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .map(std::path::Path::to_path_buf)
+            .or_else(|| self.last_folder.take());
     }
 
     /// Uses the path typed where no dialog could open: writes the file or
@@ -628,16 +685,30 @@ impl WorkbenchApp {
             return;
         };
         let path = prompt.path.trim().to_owned();
-        match &prompt.action {
-            PromptAction::Save { bytes } => match io::write_file(&path, bytes) {
-                Ok(p) => self.message = Some(Message::Info(format!("Saved {p}"))),
-                Err(e) => {
-                    self.message = Some(Message::Error(e));
-                    self.path_prompt = Some(prompt);
+        let written = match &prompt.action {
+            PromptAction::Save { bytes } => Some(io::write_file(&path, bytes).map(|p| (p, false))),
+            // the last completed step when the path is used
+            PromptAction::SaveScene => Some(
+                self.scene_file()
+                    .and_then(|json| io::write_file(&path, json.as_bytes()))
+                    .map(|p| (p, true)),
+            ),
+            PromptAction::Open => None,
+        };
+        match written {
+            Some(Ok((p, scene))) => self.saved(&p, scene),
+            Some(Err(e)) => {
+                self.message = Some(Message::Error(e));
+                self.path_prompt = Some(prompt);
+            }
+            None => match io::read_text(std::path::Path::new(&path)) {
+                Ok(file) => {
+                    self.last_folder = std::path::Path::new(&path)
+                        .parent()
+                        .filter(|d| !d.as_os_str().is_empty())
+                        .map(std::path::Path::to_path_buf);
+                    self.open_scene_text(file.name, &file.text);
                 }
-            },
-            PromptAction::Open => match io::read_text(std::path::Path::new(&path)) {
-                Ok(file) => self.open_scene_text(file.name, &file.text),
                 Err(e) => {
                     self.message = Some(Message::Error(e));
                     self.path_prompt = Some(prompt);

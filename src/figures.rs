@@ -142,7 +142,7 @@ fn sifs(view: &SolutionView) -> Option<Figure> {
         x_whole: true,
         series: step_series(series, |(c, t, k)| {
             let mode = if k == 1 { "I" } else { "II" };
-            format!("K_{mode} crack {} end {}", c + 1, t + 1)
+            format!("K_{mode} {} end {}", view.crack_name(c), t + 1)
         }),
         include_y: vec![0.0],
         ..Figure::default()
@@ -162,7 +162,9 @@ fn angles(view: &SolutionView) -> Option<Figure> {
         y_label: "kink angle θ [°]".to_owned(),
         x_whole: true,
         y_ticks: YTicks::Degrees,
-        series: step_series(series, |(c, t, _)| format!("crack {} end {}", c + 1, t + 1)),
+        series: step_series(series, |(c, t, _)| {
+            format!("{} end {}", view.crack_name(c), t + 1)
+        }),
         include_y: vec![0.0],
         ..Figure::default()
     })
@@ -225,7 +227,7 @@ fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure>
         notes.push(Note {
             at: point(s),
             text: format!(
-                "λ = {:.3}: flaws {} and {} linked ({})",
+                "λ = {:.3}: Cracks {} and {} linked ({})",
                 s.load_factor,
                 l.flaws[0] + 1,
                 l.flaws[1] + 1,
@@ -261,15 +263,54 @@ fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure>
             points: started,
         });
     }
-    // u is linear in the load: the rock fails at λ / u
-    let rock: Vec<[f64; 2]> = h
+    let nucleated: Vec<[f64; 2]> = h
         .iter()
-        .filter_map(|s| {
-            let u = s.intact_rock?.utilisation;
-            (u > 0.0).then(|| [s.crack_length * units::MM_PER_M, s.load_factor / u])
-        })
+        .filter(|s| !s.nucleated.is_empty())
+        .map(point)
         .collect();
-    if let Some(r) = h.iter().find_map(|s| s.intact_rock) {
+    if !nucleated.is_empty() {
+        series.push(Series {
+            name: "a crack started in the intact rock".to_owned(),
+            colour: colour(4),
+            style: Style::Markers,
+            points: nucleated,
+        });
+    }
+    if let Some(s) = &view.strength {
+        let at = h
+            .iter()
+            .find(|x| x.step == s.peak_step)
+            .map_or([0.0, s.peak_load_factor], point);
+        series.push(Series {
+            name: format!("peak: specimen strength {}", units::mpa(s.peak_stress)),
+            colour: colour(5),
+            style: Style::Markers,
+            points: vec![at],
+        });
+    }
+    // the uncracked specimen's strength, as a level line across the run;
+    // without it (before a step), the load at which the median rock away
+    // from the cracks reaches its strength
+    if let (Some(intact), Some(first), Some(last)) = (view.intact_load_factor, h.first(), h.last())
+    {
+        let stress = view.strength.as_ref().map_or_else(String::new, |s| {
+            format!(", {}", units::mpa(intact * s.reference_stress))
+        });
+        series.push(Series {
+            name: format!("intact rock's strength (uncracked specimen): λ = {intact:.3}{stress}"),
+            colour: colour(3),
+            style: Style::Dashed,
+            points: vec![[point(first)[0], intact], [point(last)[0], intact]],
+        });
+    } else if let Some(r) = h.iter().find_map(|s| s.intact_rock) {
+        // u is linear in the load: the median rock fails at λ / u
+        let rock: Vec<[f64; 2]> = h
+            .iter()
+            .filter_map(|s| {
+                let u = s.intact_rock?.utilisation;
+                (u > 0.0).then(|| [s.crack_length * units::MM_PER_M, s.load_factor / u])
+            })
+            .collect();
         series.push(Series {
             name: format!(
                 "λ at which the intact rock reaches its strength (σ_c = {:.1} MPa)",
@@ -479,7 +520,7 @@ mod tests {
         assert_eq!(angles.y_ticks, YTicks::Degrees);
         let sifs = &figures(PlotTab::Sifs, &view, None, None, SIZE)[0];
         let k1_tip0 = &sifs.series[0];
-        assert_eq!(k1_tip0.name, "K_I crack 1 end 1");
+        assert_eq!(k1_tip0.name, "K_I Crack 1 end 1");
         assert_eq!(k1_tip0.points[2], [3.0, 3.0], "K in MPa·√m");
         let load = &figures(PlotTab::LoadFactor, &view, None, None, SIZE)[0];
         // step 3 ran a wing to the top edge (y = 30 mm) and left one tip free
@@ -612,7 +653,11 @@ mod tests {
         );
 
         let ctx = egui::Context::default();
-        let _ = ctx.run_ui(egui::RawInput::default(), |_| {});
+        // the font atlas's first upload, not applied here: cleared, as
+        // epaint's debug build refuses to drop it unapplied
+        ctx.run_ui(egui::RawInput::default(), |_| {})
+            .textures_delta
+            .clear();
         let font = egui::FontId::proportional(12.0);
         // and the marks of secondary cracks and of the first link
         let linked = SolutionView {
@@ -677,7 +722,7 @@ mod tests {
         assert_eq!(link.at, [5.5, 0.9]);
         assert_eq!(
             link.text,
-            "λ = 0.900: flaws 1 and 2 linked (secondary–wing)"
+            "λ = 0.900: Cracks 1 and 2 linked (secondary–wing)"
         );
     }
 }

@@ -59,9 +59,13 @@ pub fn share_link(ctx: &egui::Context, fragment: &str) -> String {
 }
 
 #[cfg(not(target_arch = "wasm32"))]
-pub fn open_scene_dialog() -> Result<Picked<OpenedFile>, String> {
+pub fn open_scene_dialog(last: Option<&std::path::Path>) -> Result<Picked<OpenedFile>, String> {
     let start = web_time::Instant::now();
-    let Some(path) = rfd::FileDialog::new()
+    let mut dialog = rfd::FileDialog::new();
+    if let Some(d) = start_folder(last) {
+        dialog = dialog.set_directory(d);
+    }
+    let Some(path) = dialog
         .set_title("Open scene")
         .add_filter("Scene (JSON)", &["json"])
         .pick_file()
@@ -79,10 +83,25 @@ pub fn write_file(path: &str, bytes: &[u8]) -> Result<String, String> {
     Ok(path.to_owned())
 }
 
-/// Where a typed-in path starts: the default name in the working directory.
+/// Where a typed-in path starts: the default name in the folder last saved
+/// to or opened from, else in the user's documents folder (never the
+/// program's working folder, which is often its checkout).
 #[cfg(not(target_arch = "wasm32"))]
-pub fn default_path(name: &str) -> String {
-    std::env::current_dir().map_or_else(|_| name.to_owned(), |d| d.join(name).display().to_string())
+pub fn default_path(name: &str, last: Option<&std::path::Path>) -> String {
+    start_folder(last).map_or_else(|| name.to_owned(), |d| d.join(name).display().to_string())
+}
+
+/// The folder dialogs and typed paths start in: `last`, or the user's
+/// documents folder (`~/Documents`, else the home folder).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn start_folder(last: Option<&std::path::Path>) -> Option<std::path::PathBuf> {
+    if let Some(d) = last.filter(|d| d.is_dir()) {
+        return Some(d.to_owned());
+    }
+    let home = std::env::var_os("HOME").or_else(|| std::env::var_os("USERPROFILE"))?;
+    let home = std::path::PathBuf::from(home);
+    let documents = home.join("Documents");
+    Some(if documents.is_dir() { documents } else { home })
 }
 
 /// Reads a dropped or picked file as text.
@@ -121,9 +140,14 @@ pub fn save_dialog(
     default_name: &str,
     filter: (&str, &str),
     bytes: &[u8],
+    last: Option<&std::path::Path>,
 ) -> Result<Picked<String>, String> {
     let start = web_time::Instant::now();
-    let Some(path) = rfd::FileDialog::new()
+    let mut dialog = rfd::FileDialog::new();
+    if let Some(d) = start_folder(last) {
+        dialog = dialog.set_directory(d);
+    }
+    let Some(path) = dialog
         .set_title("Save")
         .set_file_name(default_name)
         .add_filter(filter.0, &[filter.1])
@@ -176,12 +200,12 @@ pub fn read_text(path: &std::path::Path) -> Result<OpenedFile, String> {
 
 /// Where a typed-in path starts: the default name.
 #[cfg(target_arch = "wasm32")]
-pub fn default_path(name: &str) -> String {
+pub fn default_path(name: &str, _last: Option<&std::path::Path>) -> String {
     name.to_owned()
 }
 
 #[cfg(target_arch = "wasm32")]
-pub fn open_scene_dialog() -> Result<Picked<OpenedFile>, String> {
+pub fn open_scene_dialog(_last: Option<&std::path::Path>) -> Result<Picked<OpenedFile>, String> {
     wasm_bindgen_futures::spawn_local(async {
         let picked = rfd::AsyncFileDialog::new()
             .set_title("Open scene")
@@ -217,6 +241,7 @@ pub fn save_dialog(
     default_name: &str,
     filter: (&str, &str),
     bytes: &[u8],
+    _last: Option<&std::path::Path>,
 ) -> Result<Picked<String>, String> {
     web::download(default_name, mime_type(filter.1), bytes)
         .map_err(|e| format!("cannot download {default_name}: {e}"))?;

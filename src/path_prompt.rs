@@ -7,6 +7,9 @@
 pub enum PromptAction {
     /// Write these bytes there.
     Save { bytes: Vec<u8> },
+    /// Write the scene there as it stands when the path is used (a growth
+    /// run may have gone on since Save was chosen).
+    SaveScene,
     /// Open the scene file there.
     Open,
 }
@@ -27,6 +30,11 @@ impl PathPrompt {
                 "No file dialog could open here (no desktop file-dialog portal or zenity). \
                  Type the path to save to:"
             }
+            PromptAction::SaveScene => {
+                "No file dialog could open here (no desktop file-dialog portal or zenity). \
+                 Type the path to save to (the scene is written as it stands when you press \
+                 Save here, with the growth steps done by then):"
+            }
             PromptAction::Open => {
                 "No file dialog could open here (no desktop file-dialog portal or zenity). \
                  Type the path of the scene file to open:"
@@ -37,7 +45,7 @@ impl PathPrompt {
     /// The label of the button that uses the path.
     pub fn button(&self) -> &'static str {
         match self.action {
-            PromptAction::Save { .. } => "Save here",
+            PromptAction::Save { .. } | PromptAction::SaveScene => "Save here",
             PromptAction::Open => "Open this file",
         }
     }

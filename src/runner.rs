@@ -434,15 +434,20 @@ impl Runner {
             return Ok(());
         }
         let edited = self.checked()?.clone();
-        let scene = if sim.history().is_empty() {
-            edited
-        } else {
+        let grown = !sim.history().is_empty();
+        let scene = if grown {
             sim.scene()
                 .edit(|s| s.solver = edited.solver.clone())
                 .map_err(|e| e.to_string())?
+        } else {
+            edited
         };
         let old = self.sim.take();
         self.build(old, scene)?;
+        if grown {
+            // the run's steps stay in the plots
+            self.view.earlier = self.view.history.clone();
+        }
         self.growth_ready = false;
         self.relaxation_started = false;
         self.refresh(false, None);

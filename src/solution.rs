@@ -3,7 +3,11 @@
 //! copy, so panels and the canvas never call into the solver; the runner
 //! refreshes it after each piece of solver work.
 
-use cdca::report::{GrowthStepReport, IntactRockReport, LoadCapReport, Outcome, TipReport};
+use cdca::report::{
+    CoalescenceReport, GrowthStepReport, IntactRockReport, LoadCapReport, Outcome, StrengthReport,
+    TipReport,
+};
+use cdca::scene::Lineage;
 use cdca::scene::SolverKind;
 use cdca::{ContactPointView, ContactState, RelaxStatus, ResidualSample, Simulation};
 use egui_plot::PlotPoint;
@@ -26,6 +30,12 @@ pub struct SolutionView {
     /// Per crack, per segment of its polyline: part of a secondary crack
     /// (one started at a kink, or grown from a flaw's end first in shear).
     pub secondary: Vec<Vec<bool>>,
+    /// Per crack: started in the intact rock (`growth.intact_rock`
+    /// `"nucleate"`), drawn in a colour of its own.
+    pub intact: Vec<bool>,
+    /// Per crack: its [`Lineage`] (the drawn flaw it grew from), for its
+    /// name ([`crack_name`](Self::crack_name)).
+    pub lineage: Vec<Lineage>,
     /// Every free tip after the last solve.
     pub tips: Vec<TipReport>,
     pub contact: Vec<ContactPointView>,
@@ -40,6 +50,10 @@ pub struct SolutionView {
     /// The growth steps of this simulation (the `step` of each report
     /// counts from the run a resumed scene continues).
     pub history: Vec<GrowthStepReport>,
+    /// The steps of the run the simulation continues, when it was rebuilt
+    /// from a grown scene in this session (Solve after growth): shown
+    /// before its own steps, so that no job erases a run's plots.
+    pub earlier: Vec<GrowthStepReport>,
     /// Growth steps done, a resumed run's earlier steps included
     /// ([`Simulation::steps_done`]): the number the status prints and the
     /// plots' last step.
@@ -49,6 +63,17 @@ pub struct SolutionView {
     /// The growth run ended at `growth.max_load_factor` (critical control):
     /// no free tip meets its criterion below it.
     pub load_cap: Option<LoadCapReport>,
+    /// Load factor at which the uncracked specimen's rock fails
+    /// ([`Simulation::intact_load_factor`]), once the run has a step: the
+    /// intact strength line of the Load factor plot.
+    pub intact_load_factor: Option<f64>,
+    /// The specimen's strength against the intact rock's, once the run
+    /// has ended ([`Simulation::strength`]).
+    pub strength: Option<StrengthReport>,
+    /// The run's first link between two flaws ([`Simulation::coalescence`]),
+    /// and where its tip met the other crack, m.
+    pub coalescence: Option<CoalescenceReport>,
+    pub junction: Option<[f64; 2]>,
     /// The solve from bonded faces found another solution of the same
     /// frictional problem (`Simulation::bonded_start`): the sentence
     /// saying so, with both solutions' contact counts.
@@ -106,13 +131,37 @@ impl SolutionView {
             .zip(&self.cracks)
             .map(|(l, c)| l.secondary_segments(c.len()))
             .collect();
+        self.lineage = sim.lineage().to_vec();
+        self.intact = self.lineage.iter().map(Lineage::is_intact).collect();
         self.load_factor = sim.load_factor();
         self.outcome = sim.growth_finished();
         self.load_cap = sim.load_cap();
         let history = sim.history();
-        if history.len() != self.history.len() {
-            self.history = history.to_vec();
+        if self.earlier.len() + history.len() != self.history.len() {
+            self.history = self.earlier.iter().chain(history).cloned().collect();
         }
+        // one uncracked solve per simulation (cached), after the first step
+        self.intact_load_factor = if history.is_empty() {
+            None
+        } else {
+            sim.intact_load_factor().0
+        };
+        self.strength = self.outcome.and_then(|o| sim.strength(o));
+        self.coalescence = sim.coalescence();
+        self.junction = self.coalescence.as_ref().and_then(|c| {
+            let link = history
+                .iter()
+                .find(|s| s.step == c.step)?
+                .links
+                .iter()
+                .find(|l| l.coalescence)?;
+            let crack = self.cracks.get(link.crack)?;
+            if link.tip == 0 {
+                crack.first().copied()
+            } else {
+                crack.last().copied()
+            }
+        });
         self.steps_done = sim.steps_done();
         let samples = sim.residual_history();
         self.residual_samples = samples.len();
@@ -146,6 +195,28 @@ impl SolutionView {
                     .filter(|c| c.state != ContactState::Open)
                     .count()
             });
+        }
+    }
+
+    /// Crack `c` as the Scene panel and the plots name it: a drawn flaw
+    /// "Crack 2"; a crack started at one of its kinks "Crack 2 · secondary
+    /// 1" (numbered within the flaw, in order of starting); one started in
+    /// the intact rock "Rock crack 1".
+    pub fn crack_name(&self, c: usize) -> String {
+        let Some(l) = self.lineage.get(c) else {
+            return format!("Crack {}", c + 1);
+        };
+        if l.is_intact() {
+            let k = self.lineage[..c].iter().filter(|o| o.is_intact()).count();
+            format!("Rock crack {}", k + 1)
+        } else if l.drawn == 0 {
+            let k = self.lineage[..c]
+                .iter()
+                .filter(|o| o.drawn == 0 && !o.is_intact() && o.flaw == l.flaw)
+                .count();
+            format!("Crack {} · secondary {}", l.flaw + 1, k + 1)
+        } else {
+            format!("Crack {}", l.flaw + 1)
         }
     }
 

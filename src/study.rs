@@ -6,7 +6,7 @@
 
 use std::fmt::Write as _;
 
-use cdca::report::{GrownTip, IntactRockReport, Outcome};
+use cdca::report::{GrownTip, IntactRockReport, NucleatedCrack, Outcome};
 use cdca::{Scene, Simulation};
 use web_time::Instant;
 
@@ -86,6 +86,10 @@ pub struct StudyPoint {
     pub load_factor: Option<f64>,
     /// The tips that grew in that step (empty: none grew).
     pub grown: Vec<GrownTip>,
+    /// The cracks started in the intact rock in that step: under
+    /// `growth.intact_rock` `"nucleate"` the rock can fail before any tip
+    /// grows (a long friction-held flaw), and that is the first growth.
+    pub nucleated: Vec<NucleatedCrack>,
     /// How growth ended if no tip grew.
     pub outcome: Option<Outcome>,
     /// Growth steps run.
@@ -109,6 +113,7 @@ impl StudyPoint {
             value,
             load_factor: None,
             grown: Vec::new(),
+            nucleated: Vec::new(),
             outcome,
             steps,
             error,
@@ -191,7 +196,9 @@ impl Study {
     /// One row per grown tip (or one row saying none grew): the parameter
     /// in SI units, the load factor, the tip, its mode, kink angle (degrees
     /// from the crack's direction), SIFs (Pa·√m) and the intact rock's
-    /// utilisation of its strength at that load.
+    /// utilisation of its strength at that load. A crack started in the
+    /// intact rock is a row of mode `intact_tension` or `intact_shear`
+    /// with its direction (degrees from +x) as the angle and no tip or K.
     pub fn to_csv(&self) -> String {
         let mut out = format!(
             "{},load_factor,crack,tip,mode,angle_deg,k1,k2,steps,outcome,error,intact_rock_utilisation\n",
@@ -208,7 +215,20 @@ impl Study {
                 .intact_rock
                 .map(|r| r.utilisation.to_string())
                 .unwrap_or_default();
-            if p.grown.is_empty() {
+            for n in &p.nucleated {
+                // a crack started in the intact rock: its direction, no tip
+                // or K of its own yet
+                let _ = writeln!(
+                    out,
+                    "{},{lambda},{},,intact_{},{},,,{},{outcome},{error},{rock}",
+                    p.value,
+                    n.crack,
+                    n.mode.name(),
+                    n.direction_deg,
+                    p.steps
+                );
+            }
+            if p.grown.is_empty() && p.nucleated.is_empty() {
                 let _ = writeln!(
                     out,
                     "{},{lambda},,,none,,,,{},{outcome},{error},{rock}",
@@ -267,12 +287,13 @@ impl Task for Study {
                         Some(e.to_string()),
                     ));
                 }
-                Ok(Some(step)) if !step.grown.is_empty() => {
+                Ok(Some(step)) if !(step.grown.is_empty() && step.nucleated.is_empty()) => {
                     let steps = sim.history().len();
                     self.record(StudyPoint {
                         value,
                         load_factor: Some(step.load_factor),
                         grown: step.grown,
+                        nucleated: step.nucleated,
                         outcome: None,
                         steps,
                         error: None,

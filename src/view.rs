@@ -56,6 +56,8 @@ pub struct AppView<'a> {
     pub scene: &'a SceneFile,
     /// Where the scene came from (file name or bundled title).
     pub scene_source: &'a str,
+    /// The scene differs from the one opened (edited, or grown).
+    pub scene_edited: bool,
     pub solution: &'a SolutionView,
     pub run: RunStatus,
     pub can_undo: bool,

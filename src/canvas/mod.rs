@@ -307,26 +307,38 @@ impl Canvas {
             symbols::paint_mesh_lines(painter, &view, scene);
         }
         if s.show_loads {
-            // the field shown is at λ times the scene's tractions
+            // the field shown is at λ times the scene's tractions: the
+            // label gives the load of the field on screen (after a split
+            // the last solved state's), else the solver's
             let sol = input.solution;
-            let load_factor = (sol.solved || sol.live)
-                .then_some(sol.load_factor)
+            let load_factor = input
+                .field
+                .map(|f| f.load_factor)
+                .or_else(|| (sol.solved || sol.live).then_some(sol.load_factor))
                 .filter(|l| (l - 1.0).abs() > 1e-9);
             symbols::paint_boundary(painter, &view, scene, load_factor);
         }
         // before a solve (or after an edit) the scene's own cracks, and
         // which of them are secondary from its saved lineage
         let scene_cracks: Vec<Vec<[f64; 2]>>;
-        let scene_secondary: Vec<Vec<bool>>;
-        let (cracks, secondary) = if input.solution.cracks.is_empty() {
+        let (scene_secondary, scene_intact): (Vec<Vec<bool>>, Vec<bool>);
+        let (cracks, secondary, intact) = if input.solution.cracks.is_empty() {
             let h = scene.element_size();
             scene_cracks = scene.cracks.iter().map(|c| c.polyline(h)).collect();
-            scene_secondary = secondary_in_scene(scene, &scene_cracks);
-            (&scene_cracks, &scene_secondary)
+            (scene_secondary, scene_intact) = parts_in_scene(scene, &scene_cracks);
+            (&scene_cracks, &scene_secondary, &scene_intact)
         } else {
-            (&input.solution.cracks, &input.solution.secondary)
+            let s = input.solution;
+            (&s.cracks, &s.secondary, &s.intact)
         };
-        symbols::paint_cracks(painter, &view, cracks, secondary, editor.selected_crack);
+        symbols::paint_cracks(
+            painter,
+            &view,
+            cracks,
+            secondary,
+            intact,
+            editor.selected_crack,
+        );
         if s.show_contact {
             symbols::paint_contact(
                 painter,
@@ -338,11 +350,15 @@ impl Canvas {
             );
         }
         symbols::paint_tips(painter, &view, &input.solution.tips, input.selected_tip);
+        if let (Some(at), Some(c)) = (input.solution.junction, &input.solution.coalescence) {
+            symbols::paint_link(painter, &view, at, c);
+        }
         symbols::paint_key(
             painter,
             view.rect,
             !input.solution.tips.is_empty(),
             secondary.iter().flatten().any(|&s| s),
+            intact.iter().any(|&i| i),
         );
         if editor.tool == Tool::Select {
             symbols::paint_handles(painter, &view, scene, hovered_vertex);
@@ -394,10 +410,11 @@ impl Canvas {
     }
 }
 
-/// Per crack of `scene`, whether it is a secondary crack, as its saved
-/// growth run's lineage says (`Resume::lineage_of`, as the simulation
-/// reads it); every crack is a flaw without one.
-fn secondary_in_scene(scene: &SceneFile, polylines: &[Vec<[f64; 2]>]) -> Vec<Vec<bool>> {
+/// Per crack of `scene`, as its saved growth run's lineage says
+/// (`Resume::lineage_of`, as the simulation reads it): per segment,
+/// whether it is part of a secondary crack, and whether the crack started
+/// in the intact rock. Every crack is a flaw without one.
+fn parts_in_scene(scene: &SceneFile, polylines: &[Vec<[f64; 2]>]) -> (Vec<Vec<bool>>, Vec<bool>) {
     let lineage = scene
         .growth
         .resume
@@ -407,10 +424,10 @@ fn secondary_in_scene(scene: &SceneFile, polylines: &[Vec<[f64; 2]>]) -> Vec<Vec
         .iter()
         .enumerate()
         .map(|(i, p)| match lineage {
-            Some(l) => l[i].secondary_segments(p.len()),
-            None => vec![false; p.len().saturating_sub(1)],
+            Some(l) => (l[i].secondary_segments(p.len()), l[i].is_intact()),
+            None => (vec![false; p.len().saturating_sub(1)], false),
         })
-        .collect()
+        .unzip()
 }
 
 /// A magnification that shows the largest displacement as 5 % of the

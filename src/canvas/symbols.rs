@@ -15,6 +15,8 @@ pub const SUPPORT_COLOR: Color32 = Color32::from_rgb(90, 160, 255);
 pub const CRACK_COLOR: Color32 = Color32::from_rgb(20, 20, 20);
 /// Cracks started at another crack's kink (secondary cracks).
 pub const SECONDARY_COLOR: Color32 = Color32::from_rgb(150, 40, 170);
+/// Cracks started in the intact rock (`growth.intact_rock` `"nucleate"`).
+pub const INTACT_COLOR: Color32 = Color32::from_rgb(0, 120, 130);
 pub const HANDLE_COLOR: Color32 = Color32::from_rgb(255, 210, 0);
 
 /// Colour of a contact state: open grey-blue, stick green, slip orange.
@@ -239,17 +241,30 @@ pub fn paint_boundary(
 }
 
 /// The cracks as polylines, black, with the segments `secondary` marks
-/// (per crack, per segment) in the secondary cracks' purple; the selected
-/// crack wider.
+/// (per crack, per segment) in the secondary cracks' purple and the cracks
+/// `intact` marks (started in the intact rock) in teal, dashed; the
+/// selected crack wider.
 pub fn paint_cracks(
     painter: &Painter,
     view: &ViewTransform,
     cracks: &[Vec<[f64; 2]>],
     secondary: &[Vec<bool>],
+    intact: &[bool],
     selected: Option<usize>,
 ) {
     for (i, c) in cracks.iter().enumerate() {
         let width = if selected == Some(i) { 4.0 } else { 2.5 };
+        if intact.get(i) == Some(&true) {
+            // dashed as well as coloured: told apart without colour vision
+            let points: Vec<Pos2> = c.iter().map(|&p| view.screen_from_world(p)).collect();
+            painter.extend(Shape::dashed_line(
+                &points,
+                Stroke::new(width + 0.5, INTACT_COLOR),
+                6.0,
+                2.5,
+            ));
+            continue;
+        }
         let flags = secondary.get(i).map_or(&[][..], Vec::as_slice);
         // runs of segments of one kind, each a polyline
         let mut start = 0;
@@ -377,19 +392,71 @@ pub fn paint_tips(
     }
 }
 
+/// Where two flaws linked: a ring at the junction and, beside it, the
+/// flaws and the step ("Cracks 1 and 2 linked, step 9") on the theme's
+/// window fill.
+pub fn paint_link(
+    painter: &Painter,
+    view: &ViewTransform,
+    at: [f64; 2],
+    link: &cdca::report::CoalescenceReport,
+) {
+    let q = view.screen_from_world(at);
+    painter.circle_stroke(q, 9.0, Stroke::new(3.0, Color32::WHITE));
+    painter.circle_stroke(q, 9.0, Stroke::new(1.5, Color32::BLACK));
+    let visuals = painter.ctx().global_style().visuals.clone();
+    let text = format!(
+        "Cracks {} and {} linked, step {}",
+        link.flaws[0] + 1,
+        link.flaws[1] + 1,
+        link.step
+    );
+    let galley = painter.layout_no_wrap(
+        text,
+        FontId::proportional(12.0),
+        visuals.strong_text_color(),
+    );
+    let at = q + vec2(12.0, -12.0 - galley.size().y);
+    let backing = egui::Rect::from_min_size(at, galley.size()).expand(3.0);
+    painter.rect_filled(backing, 3.0, visuals.window_fill.gamma_multiply(0.92));
+    painter.galley(at, galley, visuals.strong_text_color());
+}
+
 /// The canvas key's secondary-crack row (the UI tests look for it).
 pub const SECONDARY_KEY: &str = "secondary crack (from a kink)";
+/// The canvas key's row for cracks started in the intact rock.
+pub const INTACT_KEY: &str = "crack started in intact rock";
 
 /// The key at the canvas's bottom right (the pointer's position is at the
 /// bottom left): with `tips` (tip markers shown), each marker's colour is
 /// the decision at that tip and the ring the inspected tip; with
-/// `secondary` (a secondary crack drawn), the secondary cracks' colour.
-/// Nothing without either.
-pub fn paint_key(painter: &Painter, canvas: egui::Rect, tips: bool, secondary: bool) {
-    let rows = key_rows(tips, secondary);
-    let font = FontId::proportional(11.0);
-    let mut y = canvas.bottom() - 10.0 - 16.0 * rows.len().saturating_sub(1) as f32;
-    for (key, text) in rows {
+/// `secondary` (a secondary crack drawn), the secondary cracks' colour;
+/// with `intact` (a crack started in the intact rock), theirs. Nothing
+/// without any.
+pub fn paint_key(painter: &Painter, canvas: egui::Rect, tips: bool, secondary: bool, intact: bool) {
+    let rows = key_rows(tips, secondary, intact);
+    if rows.is_empty() {
+        return;
+    }
+    // the theme's strong text on its window fill, behind the whole key:
+    // legible on the field's colours and on either theme's background
+    let visuals = painter.ctx().global_style().visuals.clone();
+    let text_colour = visuals.strong_text_color();
+    let galleys: Vec<_> = rows
+        .iter()
+        .map(|(_, text)| {
+            painter.layout_no_wrap((*text).to_owned(), FontId::proportional(11.0), text_colour)
+        })
+        .collect();
+    let widest = galleys.iter().map(|g| g.size().x).fold(0.0, f32::max);
+    let top = canvas.bottom() - 10.0 - 16.0 * (rows.len() - 1) as f32;
+    let backing = egui::Rect::from_min_max(
+        Pos2::new(canvas.right() - 26.0 - widest - 6.0, top - 10.0),
+        Pos2::new(canvas.right() - 2.0, canvas.bottom() - 2.0),
+    );
+    painter.rect_filled(backing, 3.0, visuals.window_fill.gamma_multiply(0.92));
+    let mut y = top;
+    for ((key, _), galley) in rows.into_iter().zip(galleys) {
         let q = Pos2::new(canvas.right() - 14.0, y);
         match key {
             Key::Tip(c) => painter.circle(q, 5.0, c, Stroke::new(1.5, Color32::BLACK)),
@@ -399,21 +466,16 @@ pub fn paint_key(painter: &Painter, canvas: egui::Rect, tips: bool, secondary: b
                 Stroke::new(2.5, c),
             ),
         };
-        painter.text(
-            q - vec2(12.0, 0.0),
-            Align2::RIGHT_CENTER,
-            text,
-            font.clone(),
-            Color32::from_gray(220),
-        );
+        let at = q - vec2(12.0 + galley.size().x, galley.size().y / 2.0);
+        painter.galley(at, galley, text_colour);
         y += 16.0;
     }
 }
 
 /// The rows of [`paint_key`], top to bottom: the tip markers' with `tips`,
-/// the secondary cracks' with `secondary` (no row for what the canvas does
-/// not show).
-fn key_rows(tips: bool, secondary: bool) -> Vec<(Key, &'static str)> {
+/// the secondary cracks' with `secondary`, the intact rock's cracks' with
+/// `intact` (no row for what the canvas does not show).
+fn key_rows(tips: bool, secondary: bool, intact: bool) -> Vec<(Key, &'static str)> {
     let mut rows = Vec::new();
     if tips {
         rows.extend([
@@ -425,6 +487,9 @@ fn key_rows(tips: bool, secondary: bool) -> Vec<(Key, &'static str)> {
     }
     if secondary {
         rows.push((Key::Line(SECONDARY_COLOR), SECONDARY_KEY));
+    }
+    if intact {
+        rows.push((Key::Line(INTACT_COLOR), INTACT_KEY));
     }
     rows
 }

@@ -85,8 +85,25 @@ pub fn menu_bar_ui(ui: &mut Ui, v: &AppView, s: &mut ViewState, cmds: &mut Vec<C
             });
         });
         ui.separator();
-        ui.label(format!("Scene: {}", v.scene_source));
+        ui.label(scene_title(v));
     });
+}
+
+/// The title: the scene's own name, where it came from when that is not
+/// the name (a file, a shared link), and "edited" once it differs from
+/// what was opened: a shared two-flaw scene read "shared link", a drawn
+/// second flaw left "Single flaw under uniaxial compression" unqualified.
+fn scene_title(v: &AppView) -> String {
+    let name = v.scene.name.trim();
+    let mut title = if name.is_empty() || name == v.scene_source {
+        format!("Scene: {}", v.scene_source)
+    } else {
+        format!("Scene: {name} ({})", v.scene_source)
+    };
+    if v.scene_edited {
+        title.push_str(", edited");
+    }
+    title
 }
 
 fn shortcuts(ui: &mut Ui, cmds: &mut Vec<Command>) {

@@ -427,6 +427,15 @@ fn study_table(ui: &mut Ui, study: &Study) {
                             ui.label(format!("{:.1}", g.angle_deg));
                             ui.label(format!("{:?}", g.mode).to_lowercase());
                         }
+                        (None, None) if !p.nucleated.is_empty() => {
+                            // the intact rock failed before any tip grew
+                            ui.label(p.load_factor.map_or("–".to_owned(), |l| format!("{l:.3}")));
+                            ui.label("–");
+                            ui.label("rock").on_hover_text(
+                                "A crack started in the intact rock before any tip grew \
+                                 (growth.intact_rock \"nucleate\").",
+                            );
+                        }
                         (None, None) => {
                             ui.label("–");
                             ui.label("–");

@@ -4,8 +4,8 @@
 use cdca::fracture::criterion::radius_and_strength;
 use cdca::scene::SceneFile;
 use cdca::scene::{
-    CriterionKind, Fix, GrowthControl, Material, Plane, PointSupport, Sampling, ShearStrength,
-    SideBc,
+    CriterionKind, Fix, GrowthControl, IntactRock, Material, Plane, PointSupport, Sampling,
+    ShearStrength, SideBc,
 };
 use egui::{CollapsingHeader, Grid, Ui};
 
@@ -450,6 +450,21 @@ fn growth_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
                     (GrowthControl::Critical, "to failure (λ_cr per step)"),
                     (GrowthControl::Load, "load ramp to the scene's load"),
                 ],
+            );
+            choice(
+                ui,
+                "Intact rock",
+                &mut s.growth.intact_rock,
+                &[
+                    (IntactRock::Nucleate, "fails: cracks start in it"),
+                    (IntactRock::Ignore, "never fails (the paper's model)"),
+                ],
+            )
+            .on_hover_text(
+                "growth.intact_rock. \"nucleate\": where the rock's Mohr–Coulomb envelope with \
+                 its tension cut-off, read over a disc of radius r0, is met below every tip's \
+                 and kink's load, a new crack starts there. \"ignore\": the paper's model, \
+                 only crack tips and kinks grow.",
             );
             Grid::new("growth").num_columns(2).show(ui, |ui| {
                 let g = &mut s.growth;

@@ -2,7 +2,9 @@
 //! work in hand.
 
 use cdca::report::{Outcome, TipReport};
-use cdca::scene::{ContactUpdate, GrowthControl, GrowthSpec, Ordering, SceneFile, SolverKind};
+use cdca::scene::{
+    ContactUpdate, GrowthControl, GrowthSpec, IntactRock, Ordering, SceneFile, SolverKind,
+};
 use cdca::solvers::automaton::sor_omega;
 use egui::{Button, Grid, ProgressBar, Ui};
 
@@ -414,20 +416,24 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         );
     }
     if let Some(piece) = view.free_piece.as_ref().filter(|_| view.split) {
-        // after growth the canvas keeps the last step's solved field
-        let kept = if view.history.is_empty() {
-            String::new()
+        // after growth the canvas keeps the last step's solved field; a
+        // run that ended with the specimen cut through did not go wrong
+        let (kept, colour) = if view.history.is_empty() {
+            (String::new(), ui.visuals().warn_fg_color)
         } else {
-            format!(
-                " The field shown is the last solved state, at λ = {:.3}.",
-                view.load_factor
+            (
+                format!(
+                    " The field shown is the last solved state, at λ = {:.3}.",
+                    view.load_factor
+                ),
+                ui.visuals().text_color(),
             )
         };
         ui.colored_label(
-            ui.visuals().warn_fg_color,
+            colour,
             format!(
-                "Specimen split: {}. This solve is no solution.{kept}",
-                piece.describe()
+                "The specimen is cut through: {}, so the final cracks have no solution.{kept}",
+                free_piece_words(piece, view)
             ),
         );
     } else if view.split {
@@ -550,8 +556,28 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
             _ => {}
         }
     });
+    if let Some(story) = crate::story::story(view, v.scene) {
+        let colour = if story.went_wrong {
+            ui.visuals().warn_fg_color
+        } else {
+            ui.visuals().strong_text_color()
+        };
+        let told = ui.vertical(|ui| {
+            for line in &story.lines {
+                ui.colored_label(colour, line);
+            }
+        });
+        // the report's note says when the peak is only a bound
+        if let Some(s) = &view.strength {
+            told.response.on_hover_text(&s.note);
+        }
+    }
     if let Some(r) = view.intact_rock {
-        ui.label(intact_rock_words(&r, view.load_factor));
+        ui.label(intact_rock_words(
+            &r,
+            view.load_factor,
+            v.scene.growth.intact_rock,
+        ));
     }
     stepped_around_ui(ui, &view.history);
 }
@@ -664,20 +690,54 @@ fn intact_rock_row(ui: &mut Ui, r: &cdca::report::IntactRockReport) {
     ui.end_row();
 }
 
+/// A piece cut off by the final cracks, in the UI's words: the cracks by
+/// their Scene panel names, its size in elements, its centre in mm.
+fn free_piece_words(
+    piece: &cdca::report::FreePieceReport,
+    view: &crate::solution::SolutionView,
+) -> String {
+    let mut names: Vec<String> = piece.cracks.iter().map(|&c| view.crack_name(c)).collect();
+    names.dedup();
+    let by = if names.is_empty() {
+        "the cracks".to_owned()
+    } else {
+        names.join(" and ")
+    };
+    let elements = if piece.elements == 1 {
+        "1 element".to_owned()
+    } else {
+        format!("{} elements", piece.elements)
+    };
+    format!(
+        "{by} cut off a piece of {elements} around ({}, {}) that nothing holds",
+        units::mm(piece.centroid[0]),
+        units::mm(piece.centroid[1])
+    )
+}
+
 /// The intact rock's number in words, under the status: how much of the
 /// uncracked area is past its strength at this load, and the load at
 /// which the median reaches it (u is linear in the load). "0.98 ×
 /// strength, 47% failed" used to read as a contradiction, and "1.26 ×
 /// strength" as a specimen failed before any crack grew.
-fn intact_rock_words(r: &cdca::report::IntactRockReport, load_factor: f64) -> String {
+fn intact_rock_words(
+    r: &cdca::report::IntactRockReport,
+    load_factor: f64,
+    model: IntactRock,
+) -> String {
     let past = format!(
         "{:.0}% of the uncracked rock is past its strength at λ = {load_factor:.2}",
         100.0 * r.failed_fraction
     );
+    let checked = match model {
+        IntactRock::Nucleate => "Growth starts a crack where its reading over r0 first reaches it.",
+        IntactRock::Ignore => {
+            "The paper's model (growth.intact_rock \"ignore\") does not check it."
+        }
+    };
     if r.utilisation > 0.0 {
         format!(
-            "Intact rock: {past}; its median reaches the strength at λ = {:.2}. The crack-tip \
-             criterion does not check it.",
+            "Intact rock: {past}; its median reaches the strength at λ = {:.2}. {checked}",
             load_factor / r.utilisation
         )
     } else {

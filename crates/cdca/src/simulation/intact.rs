@@ -159,7 +159,7 @@ impl Simulation {
     }
 
     /// The load factor at which the uncracked specimen (this scene without
-    /// its cracks) first fails: its sites read at λ = 1, `1 / max u`.
+    /// its cracks) first fails: its sites read at λ = 1, `1 / max u`, solved by the direct solver.
     /// `None` for a rock without cohesion, or where no load factor brings
     /// its rock to the envelope (the loads confine it, `k N_φ ≥ 1`); with
     /// the sentence saying which. Solved once per simulation.
@@ -177,9 +177,12 @@ impl Simulation {
                 "a rock without cohesion has no unconfined strength to compare with".to_owned(),
             );
         };
+        // linear and without contact: the direct solver's one factorisation
+        // is exact and the quickest, whatever solver the scene grows with
         let uncracked = self.model.scene.edit(|f| {
             f.cracks.clear();
             f.growth.resume = None;
+            f.solver.kind = crate::scene::SolverKind::Direct;
         });
         let solved = uncracked.map_err(SolveError::from).and_then(|scene| {
             let mut sim = Simulation::new(scene)?;

@@ -333,6 +333,20 @@ impl WorkbenchApp {
     pub fn growth_outcome(&self) -> Option<cdca::report::Outcome> {
         self.runner.view().outcome
     }
+    /// The end of the growth run as the solver panel tells it, once it
+    /// has ended.
+    pub fn run_story(&self) -> Option<crate::story::Story> {
+        crate::story::story(self.runner.view(), &self.scene)
+    }
+    /// The first link between two flaws in the run shown, if any.
+    pub fn coalescence(&self) -> Option<&cdca::report::CoalescenceReport> {
+        self.runner.view().coalescence.as_ref()
+    }
+    /// The specimen's strength against the intact rock's, once the run
+    /// has ended.
+    pub fn strength(&self) -> Option<&cdca::report::StrengthReport> {
+        self.runner.view().strength.as_ref()
+    }
     /// Growth steps done, as the status prints them: a reopened run's
     /// earlier steps (`growth.resume.steps`) included, so that the last
     /// step is the growth plots' last x.

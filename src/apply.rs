@@ -102,7 +102,7 @@ impl WorkbenchApp {
             }
             Command::Solve => {
                 if self.ensure_simulation() {
-                    // after growth it solves the grown cracks, at full load
+                    // after growth it solves the grown cracks, at the last load
                     let grown = self
                         .runner
                         .simulation()
@@ -110,9 +110,12 @@ impl WorkbenchApp {
                     let steps = self.runner.view().steps_done;
                     match self.runner.solve() {
                         Ok(()) if grown => {
+                            // a grown scene resumes at its last step's load
+                            let lambda = self.runner.view().load_factor;
                             self.message = Some(Message::Info(format!(
                                 "Solving the cracks as grown (after growth step {steps}) at the \
-                                 scene's full load, λ = 1. The run's steps stay in the plots."
+                                 run's last load, λ = {lambda:.3}. The run's steps stay in the \
+                                 plots."
                             )));
                         }
                         r => self.show_error(r),

@@ -25,7 +25,7 @@ mod run;
 mod runner;
 pub mod scenes;
 mod solution;
-mod story;
+pub mod story;
 pub mod study;
 pub mod study_file;
 mod study_map;

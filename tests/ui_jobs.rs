@@ -823,3 +823,167 @@ fn solve_says_whether_another_start_finds_another_solution() {
     let json = h.state().scene_file().expect("the scene as JSON");
     assert_cli_answer(&h, &json, "after the check");
 }
+
+/// Each bundled pair grown to its end reads as a story, not an error: the
+/// status names the link (Crack 1 and Crack 2, the crack types, the step,
+/// λ and the stress λ × 100 MPa, as `cdca grow` reports them) and the peak
+/// with its share of the intact rock's strength; nothing is in the
+/// warning colour (the story did not go wrong, no error banner); the
+/// field on the canvas is at the last step's λ, the load its label prints.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn each_bundled_pair_ends_in_a_story() {
+    for file in [
+        "specimen_two_flaws_coplanar.json",
+        "specimen_two_flaws_stepped.json",
+        "specimen_two_flaws_overlapping.json",
+    ] {
+        let i = cdca_workbench::scenes::BUNDLED
+            .iter()
+            .position(|b| b.json.contains(file) || b.file == file)
+            .expect("bundled");
+        let mut h = harness(Options::default());
+        h.run_steps(3);
+        run_until_paused(&mut h, 2000);
+        h.state_mut().push(Command::OpenBundled(i));
+        h.run_steps(2);
+        run_until_paused(&mut h, 5000);
+        h.run_steps(1);
+        grow(&mut h, "Run growth");
+        h.run_steps(3);
+        let app = h.state();
+        assert!(
+            !matches!(app.message(), Some(Message::Error(_))),
+            "{file}: {:?}",
+            app.message()
+        );
+        let story = app.run_story().expect("the run ended");
+        assert!(!story.went_wrong, "{file}: {story:?}");
+        let link = app.coalescence().expect("the pair links");
+        let step = app
+            .growth_history()
+            .iter()
+            .find(|s| s.step == link.step)
+            .expect("the link's step");
+        let (a, b) = link.category.split_once('–').expect("two parts");
+        let words = |p: &str| match p {
+            "intact" => "a crack started in the intact rock".to_owned(),
+            "secondary" => "a secondary crack".to_owned(),
+            other => format!("a {other}"),
+        };
+        let head = format!(
+            "Crack {} and Crack {} linked at step {} (λ = {:.3}, ",
+            link.flaws[0] + 1,
+            link.flaws[1] + 1,
+            link.step,
+            step.load_factor,
+        );
+        let tail = format!(" MPa), {} meeting {}.", words(a), words(b));
+        let said = story
+            .lines
+            .iter()
+            .find(|l| l.starts_with(&head) && l.ends_with(&tail))
+            .unwrap_or_else(|| panic!("{file}: {head}…{tail} not in {story:?}"));
+        let mpa: f64 = said[head.len()..said.len() - tail.len()]
+            .parse()
+            .expect("the stress, MPa");
+        // four significant digits of λ × 100 MPa
+        assert!(
+            (mpa / (step.load_factor * 100.0) - 1.0).abs() < 1e-3,
+            "{said}"
+        );
+        h.get_by_label(said);
+        let strength = app.strength().expect("a peak");
+        let ratio = strength.ratio.expect("the uncracked rock fails");
+        let peak = story
+            .lines
+            .iter()
+            .find(|l| l.starts_with("Peak at step"))
+            .expect("the peak");
+        assert!(
+            peak.ends_with(&format!(
+                " MPa, {:.0} % of the intact rock's.",
+                100.0 * ratio
+            )),
+            "{peak}"
+        );
+        assert!(
+            ratio < 1.0,
+            "{file}: the pair weakens the specimen: {ratio}"
+        );
+        let last = app.growth_history().last().expect("steps").load_factor;
+        assert_eq!(app.shown_field_load_factor(), Some(last), "{file}");
+        println!("{file}:");
+        for line in &story.lines {
+            println!("  {line}");
+        }
+    }
+}
+
+/// Solve pressed during Run growth waits for the run and then solves the
+/// grown cracks at the run's last load, without erasing the run: its plots still
+/// hold every step (the Angles plot's last point is the last step), the
+/// status still counts them, and a banner says what was solved. (It used
+/// to show λ "–" and "This run resumes after growth step N" with empty
+/// plots.)
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn a_solve_queued_behind_a_run_keeps_the_runs_steps() {
+    use cdca_workbench::PlotTab;
+    use cdca_workbench::command::{Export, PlotFormat};
+    let mut h = solved_default();
+    h.get_by_label("Run growth").click();
+    h.run_steps(2);
+    assert_eq!(h.state().running_job(), Some(Job::Growth));
+    h.get_by_label("Solve").click();
+    h.run_steps(2);
+    assert_eq!(h.state().waiting_job(), Some(Job::Solve));
+    run_until_idle(&mut h, 40_000);
+    h.run_steps(2);
+    run_until_idle(&mut h, 5000);
+    h.run_steps(2);
+    let app = h.state();
+    assert!(
+        app.growth_outcome().is_none(),
+        "a new simulation was solved"
+    );
+    assert!(app.is_solved(), "{:?}", app.message());
+    let steps = app.growth_steps();
+    let last = app.growth_history().last().expect("steps").load_factor;
+    assert_eq!(app.load_factor(), last, "solved at the run's last load");
+    assert!(steps >= 2, "the run grew: {steps}");
+    assert_eq!(app.growth_history().len(), steps, "every step is kept");
+    assert_eq!(
+        app.growth_history().last().map(|s| s.step),
+        Some(steps),
+        "numbered as they were"
+    );
+    let angles = app
+        .table_csv(Export::Plot {
+            tab: PlotTab::Angles,
+            index: 0,
+            format: PlotFormat::Csv,
+        })
+        .expect("the Angles plot has points");
+    let last_tip_step = app
+        .growth_history()
+        .iter()
+        .rev()
+        .find(|s| !s.grown.is_empty())
+        .expect("a tip grew")
+        .step;
+    assert_eq!(last_x(&angles), last_tip_step as f64, "{angles}");
+    assert_eq!(
+        app.message(),
+        Some(&Message::Info(format!(
+            "Solving the cracks as grown (after growth step {steps}) at the run's last load, \
+             λ = {last:.3}. The run's steps stay in the plots."
+        )))
+    );
+}

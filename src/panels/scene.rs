@@ -333,6 +333,36 @@ fn cracks_ui(
                                 );
                             });
                         }
+                        // typed geometry, for a class exercise with exact points
+                        if let Some(points) = crack.points.as_mut() {
+                            CollapsingHeader::new("Points (mm)")
+                                .id_salt(("crack points", i))
+                                .show(ui, |ui| {
+                                    Grid::new(("points grid", i)).num_columns(2).show(ui, |ui| {
+                                        for (k, p) in points.iter_mut().enumerate() {
+                                            quantity_row(
+                                                ui,
+                                                t,
+                                                &format!("point {} x", k + 1),
+                                                &mut p[0],
+                                                MM,
+                                                "mm",
+                                                -1e5..=1e5,
+                                            );
+                                            quantity_row(
+                                                ui,
+                                                t,
+                                                &format!("point {} y", k + 1),
+                                                &mut p[1],
+                                                MM,
+                                                "mm",
+                                                -1e5..=1e5,
+                                            );
+                                        }
+                                    });
+                                });
+                        }
+                        grown_from_ui(ui, solution, i);
                         ui.horizontal(|ui| {
                             if ui
                                 .selectable_label(selected, format!("Select crack {}", i + 1))
@@ -350,7 +380,52 @@ fn cracks_ui(
                 s.cracks.remove(i);
                 editor.selected_crack = None;
             }
+            rock_cracks_ui(ui, solution);
         });
+}
+
+/// The cracks a run started at flaw `flaw`'s kinks (secondary cracks), by
+/// the plots' names, with their lengths; nothing before a run.
+fn grown_from_ui(ui: &mut Ui, solution: &SolutionView, flaw: usize) {
+    let rows: Vec<String> = solution
+        .lineage
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.drawn == 0 && !l.is_intact() && l.flaw == flaw)
+        .map(|(c, _)| grown_row(solution, c))
+        .collect();
+    if !rows.is_empty() {
+        ui.label("Grown from it in the run:");
+        for row in rows {
+            ui.weak(row);
+        }
+    }
+}
+
+/// The cracks a run started in the intact rock, in a group of their own.
+fn rock_cracks_ui(ui: &mut Ui, solution: &SolutionView) {
+    let rows: Vec<String> = solution
+        .lineage
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.is_intact())
+        .map(|(c, _)| grown_row(solution, c))
+        .collect();
+    if !rows.is_empty() {
+        CollapsingHeader::new(format!("Started in the intact rock ({})", rows.len()))
+            .id_salt("rock cracks")
+            .show(ui, |ui| {
+                for row in rows {
+                    ui.weak(row);
+                }
+            });
+    }
+}
+
+/// "Crack 1 · secondary 1: 2.100 mm".
+fn grown_row(solution: &SolutionView, c: usize) -> String {
+    let length = solution.cracks.get(c).map_or(0.0, |p| polyline_length(p));
+    format!("{}: {}", solution.crack_name(c), units::mm(length))
 }
 
 fn criterion_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {

@@ -146,6 +146,8 @@ pub struct WorkbenchApp {
     /// The folder last saved to or opened from: where the next Save and
     /// Open start.
     pub(crate) last_folder: Option<std::path::PathBuf>,
+    /// The growth step the canvas replays (None: the state now).
+    pub(crate) replay_step: Option<usize>,
     /// The scene as last opened (the default file name says `_edited` once
     /// the scene differs from it).
     pub(crate) opened_scene: SceneFile,
@@ -202,6 +204,7 @@ impl WorkbenchApp {
             waiting: None,
             path_prompt: None,
             last_folder: None,
+            replay_step: None,
             opened_scene,
             last_edited_crack: None,
             dragging: false,
@@ -806,12 +809,37 @@ impl WorkbenchApp {
             panels::menu::message_ui(ui, self.message.as_ref(), &mut cmds);
             panels::menu::waiting_ui(ui, self.waiting.as_ref(), &mut cmds);
             panels::menu::path_prompt_ui(ui, self.path_prompt.as_mut(), &mut cmds);
-            let input = CanvasInput {
-                scene: &self.scene,
-                solution: self.runner.view(),
-                field: self.runner.field().current(),
-                settings: &self.settings,
-                selected_tip: self.selected_tip,
+            let replay = self.runner.replay();
+            if !self.runner.is_running() {
+                panels::replay::replay_ui(
+                    ui,
+                    replay,
+                    self.runner.view(),
+                    self.replay_step,
+                    &mut cmds,
+                );
+            }
+            // the fields, not `self.replayed()`: the canvas and the editor
+            // are borrowed mutably below
+            let replayed = self
+                .replay_step
+                .filter(|_| !self.runner.is_running())
+                .and_then(|k| self.runner.replay().at(k));
+            let input = match replayed {
+                Some(snapshot) => CanvasInput {
+                    scene: &self.scene,
+                    solution: &snapshot.view,
+                    field: snapshot.field.as_ref(),
+                    settings: &self.settings,
+                    selected_tip: None,
+                },
+                None => CanvasInput {
+                    scene: &self.scene,
+                    solution: self.runner.view(),
+                    field: self.runner.field().current(),
+                    settings: &self.settings,
+                    selected_tip: self.selected_tip,
+                },
             };
             let response = self.canvas.ui(ui, &input, &mut self.editor, &mut cmds);
             self.screenshot_rect = Some(response.rect);
@@ -868,6 +896,44 @@ impl WorkbenchApp {
     /// The path field shown where no file dialog could open: its text.
     pub fn typed_path(&self) -> Option<&str> {
         self.path_prompt.as_ref().map(|p| p.path.as_str())
+    }
+    /// The step the canvas replays, when it replays one (not while a run
+    /// goes on).
+    pub(crate) fn replayed(&self) -> Option<&crate::replay::Snapshot> {
+        let step = self.replay_step.filter(|_| !self.runner.is_running())?;
+        self.runner.replay().at(step)
+    }
+    /// The cracks the canvas draws: a replayed step's, or the state's now.
+    pub fn canvas_cracks(&self) -> Vec<Vec<[f64; 2]>> {
+        self.replayed().map_or_else(
+            || self.runner.view().cracks.clone(),
+            |s| s.view.cracks.clone(),
+        )
+    }
+    /// The replay's marks: the step and name of each event of the run.
+    pub fn replay_marks(&self) -> Vec<(usize, String)> {
+        let v = self.runner.view();
+        crate::replay::marks(&v.history, v, v.coalescence.as_ref().map(|c| c.step))
+            .into_iter()
+            .map(|m| (m.step, m.text))
+            .collect()
+    }
+    /// The load factor of the field the canvas draws, and whether a field
+    /// is drawn at all.
+    pub fn canvas_field_load_factor(&self) -> Option<f64> {
+        match self.replayed() {
+            Some(s) => s.field.as_ref().map(|f| f.load_factor),
+            None => self.shown_field_load_factor(),
+        }
+    }
+    /// The steps the replay can show, in order.
+    pub fn replay_steps(&self) -> Vec<usize> {
+        self.runner
+            .replay()
+            .snapshots
+            .iter()
+            .map(|s| s.step)
+            .collect()
     }
     /// Types `path` into the path field, when it is shown.
     pub fn set_typed_path(&mut self, path: &str) {

@@ -134,6 +134,7 @@ impl WorkbenchApp {
                 }
             }
             Command::GrowOne | Command::RunGrowth => {
+                self.replay_step = None;
                 if self.ensure_simulation() {
                     let one = matches!(cmd, Command::GrowOne);
                     let r = self.runner.start_growth(one);
@@ -141,6 +142,7 @@ impl WorkbenchApp {
                 }
             }
             Command::SetPace(pace) => self.runner.set_pace(pace),
+            Command::Replay(step) => self.replay_step = step,
             Command::SetAccelerateGrowth(on) => self.runner.set_accelerate_growth(on),
             Command::RunStudy(setup) => {
                 let accelerate = self.runner.accelerate_growth();
@@ -364,6 +366,7 @@ impl WorkbenchApp {
     /// and is hidden otherwise; when the drag ends the simulation is
     /// rebuilt and re-solved if that is quick.
     fn scene_changed(&mut self, ongoing: bool) {
+        self.replay_step = None;
         self.race = None;
         if ongoing && self.follows_drag() && self.runner.can_follow_drag() {
             self.runner.edit_during_drag(&self.scene);

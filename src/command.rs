@@ -101,6 +101,9 @@ pub enum Command {
     /// Sweeps per frame while relaxing or growing (None: as many as the
     /// frame budget allows).
     SetPace(Option<usize>),
+    /// Show the run as it stood after this growth step (None: as it
+    /// stands now).
+    Replay(Option<usize>),
     /// Growth with the automaton runs its multigrid-accelerated form
     /// (applies from the next growth run).
     SetAccelerateGrowth(bool),

@@ -21,6 +21,7 @@ mod panels;
 mod path_prompt;
 mod persist;
 mod plot_tab;
+mod replay;
 mod run;
 mod runner;
 pub mod scenes;

@@ -10,6 +10,7 @@ use web_time::Instant;
 
 use crate::field::{FieldKey, FieldSampler};
 use crate::pacer::Pacer;
+use crate::replay::Replay;
 use crate::run::{Run, RunMode};
 use crate::solution::{SecondStart, SolutionView};
 use crate::task::{Progress, Task};
@@ -72,6 +73,8 @@ pub struct Runner {
     pacer: Pacer,
     view: SolutionView,
     field: FieldSampler,
+    /// The growth run's steps, for the replay.
+    replay: Replay,
     /// The edited scene differs from the simulated one.
     stale: bool,
     /// Wall time of the last full solve, s (for a direct solve run in
@@ -111,6 +114,7 @@ impl Default for Runner {
             pacer: Pacer::default(),
             view: SolutionView::default(),
             field: FieldSampler::default(),
+            replay: Replay::default(),
             stale: false,
             last_solve_seconds: None,
             direct_solve: None,
@@ -182,6 +186,11 @@ impl Runner {
     }
 
     /// The sampled field of the canvas.
+    /// The run's steps as stored for the replay.
+    pub fn replay(&self) -> &Replay {
+        &self.replay
+    }
+
     pub fn field(&self) -> &FieldSampler {
         &self.field
     }
@@ -271,6 +280,7 @@ impl Runner {
         self.relaxation_started = false;
         self.growth_ready = false;
         self.view.clear();
+        self.replay.clear();
         // a reopened run's steps count before anything is solved, as
         // `Simulation::steps_done` counts them once it is built
         self.view.steps_done = scene.growth.resume.as_ref().map_or(0, |r| r.steps);
@@ -702,11 +712,17 @@ impl Task for Runner {
             self.show_now |= sim.at_step_load();
         }
         let solved = sim.is_solved();
+        let growing = matches!(run, Run::Grow(_));
+        let at_step_load = sim.at_step_load();
         match result {
             Ok(slice) => {
                 // a drag's solve is shown when it ends
                 if !drag_solve || slice.progress == Progress::Finished {
                     self.refresh(solved, slice.status);
+                }
+                if growing {
+                    self.replay
+                        .record(&self.view, at_step_load, self.field.current());
                 }
                 if slice.progress == Progress::Finished {
                     if let Some(t) = self.direct_solve.take() {

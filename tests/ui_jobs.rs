@@ -987,3 +987,84 @@ fn a_solve_queued_behind_a_run_keeps_the_runs_steps() {
         )))
     );
 }
+
+/// The replay of the bundled stepped pair's run: at each marked step (the
+/// cracks started in the intact rock, the link), a click on the mark shows
+/// the cracks as the saved run had them after that many steps (`cdca`
+/// grown headless step by step, to 1e-12 m), and the field sampled at
+/// that step's λ; "Back to the end" shows the state now. Every step of
+/// the run is stored.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn the_replay_shows_each_marked_step_as_the_run_had_it() {
+    let file = "specimen_two_flaws_stepped.json";
+    let bundled = cdca_workbench::scenes::BUNDLED
+        .iter()
+        .position(|b| b.file == file)
+        .expect("bundled");
+    let mut h = harness(Options::default());
+    h.run_steps(3);
+    run_until_paused(&mut h, 2000);
+    h.state_mut().push(Command::OpenBundled(bundled));
+    h.run_steps(2);
+    run_until_paused(&mut h, 5000);
+    h.run_steps(1);
+    grow(&mut h, "Run growth");
+    h.run_steps(3);
+    let steps = h.state().growth_steps();
+    assert_eq!(
+        h.state().replay_steps(),
+        (1..=steps).collect::<Vec<_>>(),
+        "every step is stored"
+    );
+    let marks = h.state().replay_marks();
+    assert!(marks.len() >= 2, "{marks:?}");
+    assert!(marks.iter().any(|(_, t)| t == "link"), "{marks:?}");
+
+    let scene = cdca::Scene::from_json(cdca_workbench::scenes::BUNDLED[bundled].json)
+        .expect("valid scene");
+    let mut sim = cdca::Simulation::new(scene).expect("valid scene");
+    let mut after = vec![sim.cracks()];
+    while sim.growth_finished().is_none() {
+        sim.grow_step().expect("a step");
+        after.push(sim.cracks());
+    }
+    for (step, text) in &marks {
+        h.get_by_label(&format!("{step}: {text}")).click();
+        h.run_steps(2);
+        let shown = h.state().canvas_cracks();
+        let expected = &after[*step];
+        assert_eq!(shown.len(), expected.len(), "step {step}: crack count");
+        for (a, b) in shown.iter().zip(expected) {
+            assert_eq!(a.len(), b.len(), "step {step}");
+            for (p, q) in a.iter().zip(b) {
+                assert!(
+                    (p[0] - q[0]).abs() < 1e-12 && (p[1] - q[1]).abs() < 1e-12,
+                    "step {step}: {p:?} against {q:?}"
+                );
+            }
+        }
+        let lambda = h
+            .state()
+            .growth_history()
+            .iter()
+            .find(|s| s.step == *step)
+            .expect("the step")
+            .load_factor;
+        if *step < steps {
+            assert_eq!(
+                h.state().canvas_field_load_factor(),
+                Some(lambda),
+                "step {step}: the field of its load"
+            );
+        }
+    }
+    if h.query_by_label("Back to the end").is_some() {
+        h.get_by_label("Back to the end").click();
+        h.run_steps(2);
+    }
+    assert_eq!(h.state().canvas_cracks(), after[steps], "the end");
+}

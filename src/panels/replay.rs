@@ -1,0 +1,63 @@
+//! The replay bar above the canvas: after a growth run, a step slider and
+//! one button per event (the first wing, each secondary crack, each crack
+//! started in the intact rock, the link) that shows the run as it stood
+//! after that step.
+
+use egui::Ui;
+
+use crate::command::Command;
+use crate::replay::{Replay, marks};
+use crate::solution::SolutionView;
+
+/// The bar, when the run stored at least two steps.
+pub fn replay_ui(
+    ui: &mut Ui,
+    replay: &Replay,
+    view: &SolutionView,
+    shown: Option<usize>,
+    cmds: &mut Vec<Command>,
+) {
+    let steps: Vec<usize> = replay.snapshots.iter().map(|s| s.step).collect();
+    let (Some(&first), Some(&last)) = (steps.first(), steps.last()) else {
+        return;
+    };
+    if steps.len() < 2 {
+        return;
+    }
+    ui.horizontal_wrapped(|ui| {
+        ui.label("Replay step").on_hover_text(
+            "The run as it stood after each growth step: its cracks, and the contact \
+             states, tips and field of the step's solve at its load (kept as the run \
+             passed, not solved again).",
+        );
+        let mut step = shown.unwrap_or(last);
+        let slider = ui.add(egui::Slider::new(&mut step, first..=last));
+        if slider.changed() {
+            cmds.push(Command::Replay((step != last).then_some(step)));
+        }
+        let lambda = replay.at(step).map(|s| s.view.load_factor);
+        if let Some(l) = lambda {
+            ui.label(format!("λ = {l:.3}"));
+        }
+        if replay.at(step).is_some_and(|s| s.field.is_none()) {
+            ui.weak("(no field kept for this step)");
+        }
+        for m in marks(
+            &view.history,
+            view,
+            view.coalescence.as_ref().map(|c| c.step),
+        ) {
+            if replay.at(m.step).is_none() {
+                continue;
+            }
+            let label = format!("{}: {}", m.step, m.text);
+            let on = step == m.step;
+            if ui.selectable_label(on, label).clicked() {
+                cmds.push(Command::Replay((m.step != last).then_some(m.step)));
+            }
+        }
+        if shown.is_some() && ui.button("Back to the end").clicked() {
+            cmds.push(Command::Replay(None));
+        }
+    });
+}

@@ -25,20 +25,22 @@ pub fn replay_ui(
         return;
     }
     ui.horizontal_wrapped(|ui| {
-        ui.label("Replay step").on_hover_text(
+        let mut step = shown.unwrap_or(last);
+        let label = ui.label("Replay").on_hover_text(
             "The run as it stood after each growth step: its cracks, and the contact \
              states, tips and field of the step's solve at its load (kept as the run \
              passed, not solved again).",
         );
-        let mut step = shown.unwrap_or(last);
-        let slider = ui.add(egui::Slider::new(&mut step, first..=last));
+        let slider = ui
+            .add(egui::Slider::new(&mut step, first..=last).show_value(false))
+            .labelled_by(label.id);
         if slider.changed() {
             cmds.push(Command::Replay((step != last).then_some(step)));
         }
-        let lambda = replay.at(step).map(|s| s.view.load_factor);
-        if let Some(l) = lambda {
-            ui.label(format!("λ = {l:.3}"));
-        }
+        let lambda = replay
+            .at(step)
+            .map_or_else(String::new, |s| format!(", λ = {:.3}", s.view.load_factor));
+        ui.label(format!("step {step} of {last}{lambda}"));
         if replay.at(step).is_some_and(|s| s.field.is_none()) {
             ui.weak("(no field kept for this step)");
         }

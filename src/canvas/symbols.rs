@@ -385,8 +385,15 @@ pub const SECONDARY_KEY: &str = "secondary crack (from a kink)";
 /// the decision at that tip and the ring the inspected tip; with
 /// `secondary` (a secondary crack drawn), the secondary cracks' colour.
 /// Nothing without either.
-pub fn paint_key(painter: &Painter, canvas: egui::Rect, tips: bool, secondary: bool) {
+/// Returns the rectangle it covers (`None`: no rows).
+pub fn paint_key(
+    painter: &Painter,
+    canvas: egui::Rect,
+    tips: bool,
+    secondary: bool,
+) -> Option<egui::Rect> {
     let rows = key_rows(tips, secondary);
+    let mut covered: Option<egui::Rect> = None;
     let font = FontId::proportional(11.0);
     let mut y = canvas.bottom() - 10.0 - 16.0 * rows.len().saturating_sub(1) as f32;
     for (key, text) in rows {
@@ -399,15 +406,18 @@ pub fn paint_key(painter: &Painter, canvas: egui::Rect, tips: bool, secondary: b
                 Stroke::new(2.5, c),
             ),
         };
-        painter.text(
+        let text = painter.text(
             q - vec2(12.0, 0.0),
             Align2::RIGHT_CENTER,
             text,
             font.clone(),
             Color32::from_gray(220),
         );
+        let row = text.union(egui::Rect::from_center_size(q, vec2(16.0, 16.0)));
+        covered = Some(covered.map_or(row, |c| c.union(row)));
         y += 16.0;
     }
+    covered
 }
 
 /// The rows of [`paint_key`], top to bottom: the tip markers' with `tips`,

@@ -17,6 +17,7 @@ use crate::edit::{Editor, UndoStack};
 use crate::field::{FieldKey, FieldKind};
 use crate::frame_stats::FrameStats;
 use crate::job::{Job, Waiting};
+use crate::layout::Layout;
 use crate::panels;
 use crate::path_prompt::PathPrompt;
 use crate::persist::Persisted;
@@ -119,6 +120,8 @@ pub struct WorkbenchApp {
     pub(crate) editor: Editor,
     pub(crate) canvas: Canvas,
     pub(crate) settings: ViewSettings,
+    /// Which side panels show, and the text size.
+    pub(crate) layout: Layout,
     pub(crate) commands: Vec<Command>,
     pub(crate) message: Option<Message>,
     pub(crate) selected_tip: Option<usize>,
@@ -186,6 +189,7 @@ impl WorkbenchApp {
             editor: Editor::default(),
             canvas: Canvas::default(),
             settings: options.view.clone(),
+            layout: Layout::default(),
             commands: Vec::new(),
             message,
             selected_tip: None,
@@ -247,13 +251,15 @@ impl WorkbenchApp {
             };
             (scene, source)
         };
-        Self::new(Options {
+        let mut app = Self::new(Options {
             scene,
             scene_source: source,
             view: saved.view,
             start_run: run,
             ..Options::default()
-        })
+        });
+        app.layout = Layout::new(saved.layout);
+        app
     }
 
     // --- read access for tests and panels -------------------------------
@@ -482,6 +488,31 @@ impl WorkbenchApp {
     pub fn screen_from_world(&self, p: [f64; 2]) -> egui::Pos2 {
         self.canvas.view.screen_from_world(p)
     }
+    /// The specimen's rectangle on screen, as the canvas last drew it.
+    pub fn specimen_rect(&self) -> egui::Rect {
+        let s = &self.scene.specimen;
+        egui::Rect::from_two_pos(
+            self.screen_from_world([0.0, 0.0]),
+            self.screen_from_world([s.width, s.height]),
+        )
+    }
+    /// The canvas's key (tip markers, crack kinds) and the field's colour
+    /// legend on screen, as last drawn (`None`: not drawn).
+    pub fn canvas_keys(&self) -> (Option<egui::Rect>, Option<egui::Rect>) {
+        (self.canvas.key_rect, self.canvas.legend_rect)
+    }
+    /// Which side panels show, and the text size.
+    pub fn layout(&self) -> &crate::layout::LayoutSettings {
+        &self.layout.settings
+    }
+    /// Shows or hides the side panels, as the menu bar's buttons do.
+    pub fn toggle_panel(&mut self, scene: bool) {
+        if scene {
+            self.layout.toggle_scene();
+        } else {
+            self.layout.toggle_solver();
+        }
+    }
     /// Queues a command as if a panel had pushed it.
     pub fn push(&mut self, cmd: Command) {
         self.commands.push(cmd);
@@ -492,12 +523,14 @@ impl WorkbenchApp {
     /// Applies the queued commands, then spends the frame's solver budget.
     pub fn logic(&mut self, ctx: &egui::Context) {
         self.frame_start = Some(Instant::now());
+        self.layout.apply_text_scale(ctx);
         self.take_dropped_files(ctx);
         for cmd in std::mem::take(&mut self.commands) {
             self.run_cmd(ctx, cmd);
         }
         if !self.started {
             self.started = true;
+            ctx.all_styles_mut(crate::contrast::legible);
             if self.options.solve_on_start {
                 self.run_cmd(ctx, Command::Solve);
             }
@@ -740,6 +773,7 @@ impl WorkbenchApp {
             race_time_cap: &mut self.race_time_cap,
             study_setup: &mut self.study_setup,
             study_file_setup: &mut self.study_file_setup,
+            layout: &mut self.layout,
         };
         (view, state)
     }
@@ -756,42 +790,73 @@ impl WorkbenchApp {
             panels::menu::toolbar_ui(ui, &v, &mut s, &mut cmds);
         });
         // Side panels keep their width whatever their text: content wider
-        // than the panel scrolls instead of widening it (and moving the canvas).
-        egui::Panel::left("scene")
-            .resizable(true)
-            .default_size(330.0)
-            .size_range(200.0..=600.0)
-            .show(ui, |ui| {
-                fixed_width_scroll(ui, "scene scroll", |ui| {
-                    panels::scene::scene_ui(
-                        ui,
-                        &self.scene,
-                        self.runner.view(),
-                        &mut self.editor,
-                        &mut cmds,
-                    );
-                });
+        // than the panel scrolls instead of widening it (and moving the
+        // canvas). Either can be hidden (menu bar); a narrow window (a
+        // phone) starts with both hidden and opens one at a time, taking
+        // most of the width, and shows the run bar instead.
+        let window = ui.ctx().content_rect();
+        let narrow = self.layout.follow_width(window.width());
+        if !self.layout.settings.show_solver {
+            egui::Panel::top("run bar").show(ui, |ui| {
+                let (v, _) = self.view_parts();
+                panels::run_bar::run_bar_ui(ui, &v, &mut cmds);
             });
-        egui::Panel::right("solver")
-            .resizable(true)
-            .default_size(330.0)
-            .size_range(240.0..=600.0)
-            .show(ui, |ui| {
-                fixed_width_scroll(ui, "solver scroll", |ui| {
-                    let (v, s) = self.view_parts();
-                    panels::solver::solver_ui(ui, &v, s.race_time_cap, &mut cmds);
-                    ui.separator();
-                    panels::tip::tip_ui(ui, &v, &mut cmds);
+        }
+        let side_max = if narrow {
+            (window.width() - 40.0).max(200.0)
+        } else {
+            // at most 27 % of the window each, so that the canvas keeps
+            // 46 % of it: a panel dragged wide on a large window shrinks
+            // when the window does (at 1024 px: 276 px each)
+            (0.27 * window.width()).clamp(240.0, 600.0)
+        };
+        let side_default = (0.26 * window.width()).clamp(200.0, 330.0);
+        if self.layout.settings.show_scene {
+            egui::Panel::left("scene")
+                .resizable(true)
+                .default_size(side_default)
+                .size_range(200.0..=side_max)
+                .show(ui, |ui| {
+                    fixed_width_scroll(ui, "scene scroll", |ui| {
+                        panels::scene::scene_ui(
+                            ui,
+                            &self.scene,
+                            self.runner.view(),
+                            &mut self.editor,
+                            &mut cmds,
+                        );
+                    });
                 });
-            });
+        }
+        if self.layout.settings.show_solver {
+            egui::Panel::right("solver")
+                .resizable(true)
+                .default_size(side_default.max(240.0))
+                .size_range(240.0..=side_max.max(240.0))
+                .show(ui, |ui| {
+                    fixed_width_scroll(ui, "solver scroll", |ui| {
+                        let (v, s) = self.view_parts();
+                        panels::solver::solver_ui(ui, &v, s.race_time_cap, &mut cmds);
+                        ui.separator();
+                        panels::tip::tip_ui(ui, &v, &mut cmds);
+                    });
+                });
+        }
         // a study file's map needs its controls and a 300 px plot: the
         // panel takes 480 px while the Study tab shows one (at 1400 × 900
         // the canvas keeps about 350)
         let study_file = self.plot_tab == PlotTab::Study && self.study_file_setup.use_file;
+        // the canvas keeps half the window's height and its margins (the
+        // fit's, at most 2 × 41 there, and the panel's): the specimen spans
+        // at least half the window (a projector at 1024 × 640 showed it
+        // 135 px high under a 300 px plot panel)
+        let min_plots = if study_file { 480.0 } else { 20.0 };
+        let max_plots = (ui.available_rect_before_wrap().height() - 0.5 * window.height() - 110.0)
+            .max(min_plots);
         egui::Panel::bottom("plots")
             .resizable(true)
-            .default_size(300.0)
-            .min_size(if study_file { 480.0 } else { 20.0 })
+            .default_size(300.0_f32.min(max_plots))
+            .size_range(min_plots..=max_plots)
             .show(ui, |ui| {
                 // the panel keeps its height whether it shows a plot or a hint
                 ui.set_min_height(ui.available_height());
@@ -966,6 +1031,7 @@ impl eframe::App for WorkbenchApp {
             scene_json: self.scene.to_json().ok(),
             scene_source: self.scene_source.clone(),
             view: self.settings.clone(),
+            layout: self.layout.settings.clone(),
         }
         .store(storage);
     }

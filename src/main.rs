@@ -6,6 +6,7 @@
 #[cfg(not(target_arch = "wasm32"))]
 const USAGE: &str = "usage: cdca-workbench [SCENE.json | --link LINK] [--run relax|grow|compare]
                      [--study PATH FROM TO COUNT] [--study-file STUDY.json]
+                     [--size WIDTHxHEIGHT]
 
 Opens SCENE.json, or the scene a shared link carries (a web address or its
 #scene=… fragment, from File > Copy link to this scene; default: the last
@@ -14,7 +15,9 @@ relaxation (relax), the growth run (grow) or the solver race (compare)
 after the first solve; with --study, a parameter study of the scene field
 PATH (e.g. cracks.0.friction) over COUNT values from FROM to TO, in the
 Study tab's units (MPa, mm, °, or none); with --study-file, the first
-steps of every point of a study file (docs/studies.md) in the Study tab.";
+steps of every point of a study file (docs/studies.md) in the Study tab.
+--size sets the window's size in points (default 1400x900; e.g. 1024x640
+for a projector, 390x844 for a phone's).";
 
 /// What the command line asks for.
 #[cfg(not(target_arch = "wasm32"))]
@@ -22,6 +25,8 @@ struct Launch {
     /// (file name, scene) to open.
     scene: Option<(String, cdca::scene::SceneFile)>,
     run: Option<cdca_workbench::StartRun>,
+    /// The window's inner size, points.
+    size: [f32; 2],
 }
 
 /// Parses the command line (without the program name). `Ok(None)`: help
@@ -32,6 +37,7 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Option<Launch>, 
     let mut launch = Launch {
         scene: None,
         run: None,
+        size: [1400.0, 900.0],
     };
     while let Some(arg) = args.next() {
         match arg.as_str() {
@@ -97,6 +103,14 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Option<Launch>, 
                     .map_or_else(|| path.clone(), |n| n.to_string_lossy().into_owned());
                 launch.run = Some(StartRun::StudyFile { source, text });
             }
+            "--size" => {
+                let text = args.next().ok_or("--size needs WIDTHxHEIGHT")?;
+                launch.size = text
+                    .split_once('x')
+                    .and_then(|(w, h)| Some([w.parse::<f32>().ok()?, h.parse::<f32>().ok()?]))
+                    .filter(|s| s.iter().all(|v| (200.0..=10_000.0).contains(v)))
+                    .ok_or(format!("--size {text}: expected e.g. 1024x640"))?;
+            }
             flag if flag.starts_with('-') => return Err(format!("unknown option {flag}")),
             path => {
                 if launch.scene.is_some() {
@@ -133,8 +147,9 @@ fn main() -> eframe::Result {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("CDCA workbench")
-            .with_inner_size([1400.0, 900.0])
-            .with_min_inner_size([800.0, 500.0]),
+            .with_inner_size(launch.size)
+            // a phone's width: the layout hides the side panels below 800
+            .with_min_inner_size([320.0, 400.0]),
         ..Default::default()
     };
     eframe::run_native(

@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::canvas::ViewSettings;
+use crate::layout::LayoutSettings;
 
 /// Saved as JSON through eframe's storage under [`STORAGE_KEY`].
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -14,6 +15,8 @@ pub struct Persisted {
     /// Where it came from (file name or bundled title).
     pub scene_source: String,
     pub view: ViewSettings,
+    /// Which side panels show, and the text size.
+    pub layout: LayoutSettings,
 }
 
 /// Key of the saved state in eframe's storage.

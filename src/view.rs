@@ -11,6 +11,7 @@ use crate::canvas::ViewSettings;
 use crate::compare::Race;
 use crate::edit::Editor;
 use crate::job::Job;
+use crate::layout::Layout;
 use crate::plot_tab::PlotTab;
 use crate::run::RunMode;
 use crate::solution::SolutionView;
@@ -91,4 +92,6 @@ pub struct ViewState<'a> {
     pub study_setup: &'a mut StudySetup,
     /// How the Study tab runs a study file.
     pub study_file_setup: &'a mut StudyFileSetup,
+    /// Which side panels show, and the text size.
+    pub layout: &'a mut Layout,
 }

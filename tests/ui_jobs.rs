@@ -1024,8 +1024,8 @@ fn the_replay_shows_each_marked_step_as_the_run_had_it() {
     assert!(marks.len() >= 2, "{marks:?}");
     assert!(marks.iter().any(|(_, t)| t == "link"), "{marks:?}");
 
-    let scene = cdca::Scene::from_json(cdca_workbench::scenes::BUNDLED[bundled].json)
-        .expect("valid scene");
+    let scene =
+        cdca::Scene::from_json(cdca_workbench::scenes::BUNDLED[bundled].json).expect("valid scene");
     let mut sim = cdca::Simulation::new(scene).expect("valid scene");
     let mut after = vec![sim.cracks()];
     while sim.growth_finished().is_none() {

@@ -149,36 +149,34 @@ pub fn turbo(t: f32) -> Color32 {
 }
 
 /// A vertical colour bar with ticks in the field's unit, in the canvas's
-/// top-right corner.
+/// top-right corner, ending above `bottom` (the key's top) where the
+/// canvas is short; returns the rectangle it covers. Its backing is
+/// opaque: the text keeps its contrast over any field colour.
 pub fn paint_legend(
     painter: &Painter,
     canvas: Rect,
+    bottom: f32,
     kind: FieldKind,
     (lo, hi): (f64, f64),
     clipped: bool,
-) {
+) -> Rect {
     let (unit, factor) = kind.unit();
+    // 200 px high where the canvas has room, shorter above the key
+    let below = if clipped { 38.0 } else { 26.0 };
+    let height = (bottom - canvas.top() - 40.0 - below).clamp(40.0, 200.0);
     let bar = Rect::from_min_size(
         pos2(canvas.right() - 90.0, canvas.top() + 40.0),
-        vec2(16.0, 200.0),
+        vec2(16.0, height),
     );
     let text_color = painter.ctx().global_style().visuals.text_color();
     let bg = Rect::from_min_max(
         bar.min - vec2(8.0, 30.0),
-        pos2(
-            canvas.right() - 4.0,
-            bar.bottom() + if clipped { 38.0 } else { 26.0 },
-        ),
+        pos2(canvas.right() - 4.0, bar.bottom() + below),
     );
     painter.rect_filled(
         bg,
         4.0,
-        painter
-            .ctx()
-            .global_style()
-            .visuals
-            .extreme_bg_color
-            .gamma_multiply(0.85),
+        painter.ctx().global_style().visuals.extreme_bg_color,
     );
     let steps = 48;
     let mut mesh = Mesh::default();
@@ -241,6 +239,7 @@ pub fn paint_legend(
             );
         }
     }
+    bg
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@ mod symbols;
 mod view;
 
 use cdca::scene::SceneFile;
-use egui::{Align2, Color32, FontId, Key, PointerButton, Pos2, Response, Sense, Stroke, Ui};
+use egui::{Align2, FontId, Key, PointerButton, Pos2, Response, Sense, Stroke, Ui};
 use serde::{Deserialize, Serialize};
 
 use crate::command::Command;
@@ -76,6 +76,12 @@ pub struct Canvas {
     /// Specimen size the view was last fitted to.
     fitted_to: Option<[f64; 2]>,
     pub fit_requested: bool,
+    /// The user zoomed or panned since the last fit: a new canvas size
+    /// keeps their view instead of refitting.
+    moved_since_fit: bool,
+    /// The key and the colour legend as last drawn.
+    pub key_rect: Option<egui::Rect>,
+    pub legend_rect: Option<egui::Rect>,
     mesh: Option<FieldMesh>,
     /// Pointer position in the specimen, m.
     pub hover_world: Option<[f64; 2]>,
@@ -97,10 +103,14 @@ impl Canvas {
         let (rect, response) = ui.allocate_exact_size(ui.available_size(), Sense::click_and_drag());
         response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Canvas, true, CANVAS_LABEL));
         let size = [input.scene.specimen.width, input.scene.specimen.height];
-        if self.fit_requested || self.fitted_to != Some(size) {
+        // refit to a new specimen, and to a resized canvas (window or
+        // panels) unless the user has zoomed or panned since the last fit
+        let resized = self.view.rect.size() != rect.size() && !self.moved_since_fit;
+        if self.fit_requested || self.fitted_to != Some(size) || resized {
             self.view.fit(rect, size[0], size[1]);
             self.fitted_to = Some(size);
             self.fit_requested = false;
+            self.moved_since_fit = false;
         } else if self.view.rect != rect {
             self.view.rect = rect;
         }
@@ -127,6 +137,7 @@ impl Canvas {
             let factor = f64::from(zoom) * (f64::from(scroll) * 0.002).exp();
             if (factor - 1.0).abs() > 1e-6 {
                 self.view.zoom_about(p, factor);
+                self.moved_since_fit = true;
             }
         }
         let pans = response.dragged_by(PointerButton::Secondary)
@@ -134,8 +145,9 @@ impl Canvas {
             || (response.dragged_by(PointerButton::Primary)
                 && editor.tool == Tool::Select
                 && editor.dragging.is_none());
-        if pans {
+        if pans && response.drag_delta() != egui::Vec2::ZERO {
             self.view.pan(response.drag_delta());
+            self.moved_since_fit = true;
         }
     }
 
@@ -298,9 +310,6 @@ impl Canvas {
             }
             if let Some(mesh) = &self.mesh {
                 mesh.paint(painter, &view);
-                if let Some(range) = mesh.range {
-                    paint_legend(painter, view.rect, s.field, range, s.clip_range);
-                }
             }
         }
         if s.show_mesh {
@@ -353,13 +362,29 @@ impl Canvas {
         if let (Some(at), Some(c)) = (input.solution.junction, &input.solution.coalescence) {
             symbols::paint_link(painter, &view, at, c);
         }
-        symbols::paint_key(
+        self.key_rect = symbols::paint_key(
             painter,
             view.rect,
             !input.solution.tips.is_empty(),
             secondary.iter().flatten().any(|&s| s),
             intact.iter().any(|&i| i),
         );
+        // the legend above the key, shortened to clear it
+        self.legend_rect = None;
+        if let Some((mesh, range)) = field
+            .and(self.mesh.as_ref())
+            .and_then(|m| m.range.map(|r| (m, r)))
+        {
+            let bottom = self.key_rect.map_or(view.rect.bottom(), |k| k.top() - 6.0);
+            self.legend_rect = Some(paint_legend(
+                painter,
+                view.rect,
+                bottom,
+                mesh.key.kind,
+                range,
+                s.clip_range,
+            ));
+        }
         if editor.tool == Tool::Select {
             symbols::paint_handles(painter, &view, scene, hovered_vertex);
         }
@@ -400,12 +425,15 @@ impl Canvas {
             text.push_str("   — click points; double-click or Enter finishes, Esc cancels");
         }
         let pos = self.view.rect.left_bottom() + egui::vec2(8.0, -8.0);
+        // the theme's text colour: grey 120 measured 4.4:1 on the light
+        // theme's canvas (`crate::contrast`)
+        let colour = painter.ctx().global_style().visuals.text_color();
         painter.text(
             pos,
             Align2::LEFT_BOTTOM,
             text,
             FontId::proportional(12.0),
-            Color32::from_gray(120),
+            colour,
         );
     }
 }

@@ -432,11 +432,17 @@ pub const INTACT_KEY: &str = "crack started in intact rock";
 /// the decision at that tip and the ring the inspected tip; with
 /// `secondary` (a secondary crack drawn), the secondary cracks' colour;
 /// with `intact` (a crack started in the intact rock), theirs. Nothing
-/// without any.
-pub fn paint_key(painter: &Painter, canvas: egui::Rect, tips: bool, secondary: bool, intact: bool) {
+/// without any. Returns the rectangle it covers (`None`: no rows).
+pub fn paint_key(
+    painter: &Painter,
+    canvas: egui::Rect,
+    tips: bool,
+    secondary: bool,
+    intact: bool,
+) -> Option<egui::Rect> {
     let rows = key_rows(tips, secondary, intact);
     if rows.is_empty() {
-        return;
+        return None;
     }
     // the theme's strong text on its window fill, behind the whole key:
     // legible on the field's colours and on either theme's background
@@ -470,6 +476,7 @@ pub fn paint_key(painter: &Painter, canvas: egui::Rect, tips: bool, secondary: b
         painter.galley(at, galley, text_colour);
         y += 16.0;
     }
+    Some(backing)
 }
 
 /// The rows of [`paint_key`], top to bottom: the tip markers' with `tips`,

@@ -49,11 +49,13 @@ impl ViewTransform {
         )
     }
 
-    /// Shows the rectangle `[0, width] × [0, height]` with a margin.
+    /// Shows the rectangle `[0, width] × [0, height]` with a margin for
+    /// the load arrows: 70 points on a large canvas, down to 36 on a small
+    /// one (a projector's 1024 × 640), where the specimen comes first.
     pub fn fit(&mut self, rect: Rect, width: f64, height: f64) {
         self.rect = rect;
         self.center_world = [0.5 * width, 0.5 * height];
-        let margin = 70.0;
+        let margin = (0.1 * rect.width().min(rect.height())).clamp(36.0, 70.0);
         let sx = f64::from((rect.width() - 2.0 * margin).max(20.0)) / width;
         let sy = f64::from((rect.height() - 2.0 * margin).max(20.0)) / height;
         self.points_per_m = sx.min(sy);

@@ -8,6 +8,7 @@ use crate::edit::Tool;
 use crate::field::FieldKind;
 use crate::frame_stats::FrameStats;
 use crate::job::Waiting;
+use crate::layout::TEXT_SCALES;
 use crate::path_prompt::PathPrompt;
 use crate::scenes::BUNDLED;
 use crate::units;
@@ -17,9 +18,12 @@ const UNDO: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Z)
 const REDO: KeyboardShortcut =
     KeyboardShortcut::new(Modifiers::COMMAND.plus(Modifiers::SHIFT), Key::Z);
 const REDO_Y: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Y);
+/// Show or hide the Scene panel (left) and the Solver panel (right).
+const SCENE_PANEL: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::OpenBracket);
+const SOLVER_PANEL: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::CloseBracket);
 
 pub fn menu_bar_ui(ui: &mut Ui, v: &AppView, s: &mut ViewState, cmds: &mut Vec<Command>) {
-    shortcuts(ui, cmds);
+    shortcuts(ui, s, cmds);
     egui::MenuBar::new().ui(ui, |ui| {
         ui.menu_button("File", |ui| {
             if ui.button("Open scene…").clicked() {
@@ -83,9 +87,22 @@ pub fn menu_bar_ui(ui: &mut Ui, v: &AppView, s: &mut ViewState, cmds: &mut Vec<C
                 ui.add(egui::DragValue::new(&mut s.settings.samples_per_cell).range(1..=4))
                     .labelled_by(l.id);
             });
+            ui.separator();
+            ui.label("Text size");
+            for scale in TEXT_SCALES {
+                let label = format!("{:.0} %", 100.0 * scale);
+                let on = (s.layout.settings.text_scale - scale).abs() < 1e-3;
+                if ui.radio(on, label).clicked() {
+                    s.layout.settings.text_scale = scale;
+                }
+            }
         });
         ui.separator();
-        ui.label(scene_title(v));
+        panel_toggles(ui, s);
+        if !s.layout.is_narrow() {
+            ui.separator();
+            ui.label(scene_title(v));
+        }
     });
 }
 
@@ -106,7 +123,31 @@ fn scene_title(v: &AppView) -> String {
     title
 }
 
-fn shortcuts(ui: &mut Ui, cmds: &mut Vec<Command>) {
+/// The buttons that show and hide the side panels, lit while shown.
+fn panel_toggles(ui: &mut Ui, s: &mut ViewState) {
+    let shown = s.layout.settings.show_scene;
+    let scene = ui.selectable_label(shown, "< Scene").on_hover_text(format!(
+        "{} the Scene panel ({})",
+        if shown { "Hide" } else { "Show" },
+        ui.ctx().format_shortcut(&SCENE_PANEL)
+    ));
+    if scene.clicked() {
+        s.layout.toggle_scene();
+    }
+    let shown = s.layout.settings.show_solver;
+    let solver = ui
+        .selectable_label(shown, "Solver >")
+        .on_hover_text(format!(
+            "{} the Solver panel ({})",
+            if shown { "Hide" } else { "Show" },
+            ui.ctx().format_shortcut(&SOLVER_PANEL)
+        ));
+    if solver.clicked() {
+        s.layout.toggle_solver();
+    }
+}
+
+fn shortcuts(ui: &mut Ui, s: &mut ViewState, cmds: &mut Vec<Command>) {
     if ui.memory(|m| m.focused().is_some()) {
         return; // text fields keep their own undo
     }
@@ -115,6 +156,12 @@ fn shortcuts(ui: &mut Ui, cmds: &mut Vec<Command>) {
             cmds.push(Command::Redo);
         } else if i.consume_shortcut(&UNDO) {
             cmds.push(Command::Undo);
+        }
+        if i.consume_shortcut(&SCENE_PANEL) {
+            s.layout.toggle_scene();
+        }
+        if i.consume_shortcut(&SOLVER_PANEL) {
+            s.layout.toggle_solver();
         }
     });
 }

@@ -5,6 +5,7 @@
 pub mod menu;
 pub mod plots;
 pub mod replay;
+pub mod run_bar;
 pub mod scene;
 pub mod solver;
 pub mod study_file;

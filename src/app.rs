@@ -151,6 +151,12 @@ pub struct WorkbenchApp {
     pub(crate) last_folder: Option<std::path::PathBuf>,
     /// The growth step the canvas replays (None: the state now).
     pub(crate) replay_step: Option<usize>,
+    /// The first frame has been laid out (the start-up work waits for it).
+    painted_once: bool,
+    /// The first frame and the first field were reported (see
+    /// `STARTUP_REPORT`).
+    #[cfg(not(target_arch = "wasm32"))]
+    startup_reported: (bool, bool),
     /// The scene as last opened (the default file name says `_edited` once
     /// the scene differs from it).
     pub(crate) opened_scene: SceneFile,
@@ -209,6 +215,9 @@ impl WorkbenchApp {
             path_prompt: None,
             last_folder: None,
             replay_step: None,
+            painted_once: false,
+            #[cfg(not(target_arch = "wasm32"))]
+            startup_reported: (false, false),
             opened_scene,
             last_edited_crack: None,
             dragging: false,
@@ -528,9 +537,15 @@ impl WorkbenchApp {
         for cmd in std::mem::take(&mut self.commands) {
             self.run_cmd(ctx, cmd);
         }
-        if !self.started {
-            self.started = true;
+        if !self.painted_once {
+            // the first frame shows the scene's geometry and the controls
+            // at once; the start-up work (a build, a solve, a run) begins
+            // in the next frame, so that no scene leaves the window blank
+            self.painted_once = true;
             ctx.all_styles_mut(crate::contrast::legible);
+            ctx.request_repaint();
+        } else if !self.started {
+            self.started = true;
             if self.options.solve_on_start {
                 self.run_cmd(ctx, Command::Solve);
             }
@@ -1017,6 +1032,32 @@ fn fixed_width_scroll(ui: &mut Ui, id: &str, add_contents: impl FnOnce(&mut Ui))
         .show(ui, add_contents);
 }
 
+/// When the process started, set by the native `main` when the
+/// environment has `CDCA_STARTUP_REPORT` (scripts/first_frame.sh): the app
+/// then prints when its first frame and its first solved field were laid
+/// out, and closes once the field is shown.
+#[cfg(not(target_arch = "wasm32"))]
+pub static STARTUP_REPORT: std::sync::OnceLock<Instant> = std::sync::OnceLock::new();
+
+#[cfg(not(target_arch = "wasm32"))]
+impl WorkbenchApp {
+    fn report_startup(&mut self, ctx: &egui::Context) {
+        let Some(t0) = STARTUP_REPORT.get() else {
+            return;
+        };
+        let t = t0.elapsed().as_secs_f64();
+        if !self.startup_reported.0 {
+            self.startup_reported.0 = true;
+            eprintln!("startup: first frame {t:.3} s");
+        }
+        if !self.startup_reported.1 && self.runner.field().current().is_some() {
+            self.startup_reported.1 = true;
+            eprintln!("startup: field {t:.3} s");
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+        }
+    }
+}
+
 impl eframe::App for WorkbenchApp {
     fn logic(&mut self, ctx: &egui::Context, _frame: &mut eframe::Frame) {
         WorkbenchApp::logic(self, ctx);
@@ -1024,6 +1065,8 @@ impl eframe::App for WorkbenchApp {
 
     fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
         WorkbenchApp::ui(self, ui);
+        #[cfg(not(target_arch = "wasm32"))]
+        self.report_startup(ui.ctx());
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {

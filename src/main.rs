@@ -133,6 +133,9 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Option<Launch>, 
 
 #[cfg(not(target_arch = "wasm32"))]
 fn main() -> eframe::Result {
+    if std::env::var_os("CDCA_STARTUP_REPORT").is_some() {
+        let _ = cdca_workbench::app::STARTUP_REPORT.set(web_time::Instant::now());
+    }
     let launch = match parse_args(std::env::args().skip(1)) {
         Ok(Some(launch)) => launch,
         Ok(None) => {

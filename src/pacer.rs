@@ -8,6 +8,9 @@ use web_time::{Duration, Instant};
 /// Most sweeps one call is given.
 const MAX_SWEEPS_PER_CALL: usize = 10_000;
 
+/// Most a call grows over the last one.
+const GROWTH: usize = 4;
+
 /// Share of the frame's remaining budget one call is sized to.
 const SHARE_OF_WHAT_IS_LEFT: f64 = 0.25;
 
@@ -86,7 +89,11 @@ impl Pacer {
             if now >= deadline {
                 self.per_call = (sweeps / 2).max(1);
             } else if fits {
-                self.per_call = sized(took, sweeps, deadline - now);
+                // at most four times the last call: a call that took next
+                // to nothing (a relaxation's setup, a timer's resolution)
+                // sized the next to 10 000 sweeps, 9 s on a 120 × 120
+                // automaton plate, and its window stayed blank that long
+                self.per_call = sized(took, sweeps, deadline - now).min(GROWTH * sweeps);
             }
         }
         fits
@@ -113,6 +120,19 @@ mod tests {
         assert_eq!(sized(ms(1), 10, ms(8)), 20);
         assert_eq!(sized(ms(100), 1, ms(1)), 1);
         assert_eq!(sized(Duration::ZERO, 1, ms(8)), MAX_SWEEPS_PER_CALL);
+    }
+
+    /// A call that took no measurable time gives the next at most four
+    /// times its sweeps, not the most a call can have.
+    #[test]
+    fn a_call_that_took_no_time_grows_the_next_fourfold_at_most() {
+        let mut p = Pacer::default();
+        let far = Instant::now() + Duration::from_secs(1);
+        assert!(p.another_fits(Instant::now(), 1, far));
+        assert!(p.sweeps() <= 4, "{}", p.sweeps());
+        let n = p.sweeps();
+        assert!(p.another_fits(Instant::now(), n, far));
+        assert!(p.sweeps() <= 4 * n, "{}", p.sweeps());
     }
 
     #[test]

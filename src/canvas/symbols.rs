@@ -217,6 +217,13 @@ pub fn paint_boundary(
                     };
                     (pa + (pb - pa) * (5.0 / n as f32) + out * (len + 8.0), align)
                 };
+                // inside the canvas whatever the fit's margin: on a small
+                // canvas the label fell past its edge and was cut off
+                let inner = view.rect.shrink(10.0);
+                let at_label = Pos2::new(
+                    at_label.x.clamp(inner.left(), inner.right()),
+                    at_label.y.clamp(inner.top(), inner.bottom()),
+                );
                 painter.text(at_label, align, label, font.clone(), LOAD_COLOR);
             }
         }

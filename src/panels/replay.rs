@@ -24,7 +24,7 @@ pub fn replay_ui(
     if steps.len() < 2 {
         return;
     }
-    ui.horizontal_wrapped(|ui| {
+    ui.horizontal(|ui| {
         let mut step = shown.unwrap_or(last);
         let label = ui.label("Replay").on_hover_text(
             "The run as it stood after each growth step: its cracks, and the contact \
@@ -44,22 +44,25 @@ pub fn replay_ui(
         if replay.at(step).is_some_and(|s| s.field.is_none()) {
             ui.weak("(no field kept for this step)");
         }
-        for m in marks(
-            &view.history,
-            view,
-            view.coalescence.as_ref().map(|c| c.step),
-        ) {
+        if shown.is_some() && ui.button("Back to the end").clicked() {
+            cmds.push(Command::Replay(None));
+        }
+    });
+    // the marks on their own rows
+    ui.horizontal_wrapped(|ui| {
+        let link = view.coalescence.as_ref().map(|c| c.step);
+        for m in marks(&view.history, view, link) {
             if replay.at(m.step).is_none() {
                 continue;
             }
             let label = format!("{}: {}", m.step, m.text);
-            let on = step == m.step;
-            if ui.selectable_label(on, label).clicked() {
+            let on = shown.unwrap_or(last) == m.step;
+            if ui
+                .selectable_label(on, egui::RichText::new(label).small())
+                .clicked()
+            {
                 cmds.push(Command::Replay((m.step != last).then_some(m.step)));
             }
-        }
-        if shown.is_some() && ui.button("Back to the end").clicked() {
-            cmds.push(Command::Replay(None));
         }
     });
 }

@@ -791,10 +791,11 @@ mod tests {
             angles.series.iter().map(|s| (s.style, &s.points)).collect();
         assert_eq!(
             pieces,
+            // the tip is end 2: dashed
             vec![
-                (Style::LineAndMarkers, &vec![[1.0, 70.0], [2.0, 60.0]]),
+                (Style::DashedAndMarkers, &vec![[1.0, 70.0], [2.0, 60.0]]),
                 (Style::Gap, &vec![[2.0, 60.0], [5.0, 20.0]]),
-                (Style::LineAndMarkers, &vec![[5.0, 20.0]]),
+                (Style::DashedAndMarkers, &vec![[5.0, 20.0]]),
             ]
         );
         assert_eq!(angles.legend().count(), 1);

@@ -199,7 +199,13 @@ fn check_tab(h: &mut Harness<'_, WorkbenchApp>, tab: &str, min: [f32; 2]) -> Vec
     let texts = painted_texts(h);
     let mut problems = Vec::new();
     let shown = plots(h);
-    if shown.is_empty() {
+    // a run in which no tip grew (the overlapping pair: every step started
+    // cracks in the intact rock) has no angles: the tab says so
+    let none_grew = h.state().growth_history().iter().all(|s| s.grown.is_empty());
+    if tab == "Angles" && none_grew {
+        assert!(shown.is_empty());
+        h.get_by_label_contains("No tip has grown in");
+    } else if shown.is_empty() {
         let hint: Vec<String> = texts
             .iter()
             .filter(|t| t.rect.top() > canvas.bottom())
@@ -221,8 +227,12 @@ fn check_tab(h: &mut Harness<'_, WorkbenchApp>, tab: &str, min: [f32; 2]) -> Vec
             problems.push(format!("{tab}: {name}: y ticks {y:?}, x ticks {x:?}"));
         }
     }
+    // the legend beside a plot scrolls (its last lines cut by the scroll
+    // area are a scroll away): left out
+    let legend = shown.iter().map(|p| p.1.right()).fold(f32::INFINITY, f32::min) + 4.0;
     for t in texts
         .iter()
+        .filter(|t| t.rect.left() < legend)
         .filter(|t| panel.contains_rect(t.clip) || t.clip.top() >= canvas.bottom())
         .filter(|t| t.clip.center().x > canvas.left() && t.clip.center().x < canvas.right())
     {

@@ -857,15 +857,16 @@ impl WorkbenchApp {
                     });
                 });
         }
-        // a study file's map needs its controls and a 300 px plot: the
-        // panel takes 480 px while the Study tab shows one (at 1400 × 900
-        // the canvas keeps about 350)
-        let study_file = self.plot_tab == PlotTab::Study && self.study_file_setup.use_file;
+        // a study file's map needs its controls and a 300 px plot, and a
+        // sweep its controls, table and a plot of 150 px or more: the
+        // panel takes 480 px while the Study tab shows (at 1400 × 900 the
+        // canvas keeps about 350)
+        let study_tab = self.plot_tab == PlotTab::Study;
         // the canvas keeps half the window's height and its margins (the
         // fit's, at most 2 × 41 there, and the panel's): the specimen spans
         // at least half the window (a projector at 1024 × 640 showed it
         // 135 px high under a 300 px plot panel)
-        let min_plots = if study_file { 480.0 } else { 20.0 };
+        let min_plots = if study_tab { 480.0 } else { 20.0 };
         let max_plots = (ui.available_rect_before_wrap().height() - 0.5 * window.height() - 110.0)
             .max(min_plots);
         egui::Panel::bottom("plots")

@@ -13,6 +13,13 @@ use egui::Color32;
 pub enum Style {
     /// A line through the points, with a marker at each.
     LineAndMarkers,
+    /// A dashed line through the points, with a marker at each (a crack's
+    /// second end beside its first, solid).
+    DashedAndMarkers,
+    /// A line with a diamond at each point (K_II beside K_I's circles).
+    LineAndDiamonds,
+    /// A dashed line with a diamond at each point.
+    DashedAndDiamonds,
     /// A line only (long histories).
     Line,
     /// A dashed line only.
@@ -23,6 +30,48 @@ pub enum Style {
     /// that series has none (a tip that did not grow for some steps):
     /// drawn, but neither in the legend nor in the exported numbers.
     Gap,
+}
+
+/// The marker drawn at each point of a series.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Marker {
+    Circle,
+    Diamond,
+}
+
+impl Style {
+    /// A line is drawn through the points.
+    pub fn has_line(self) -> bool {
+        self != Self::Markers
+    }
+
+    /// The line is dashed.
+    pub fn dashed(self) -> bool {
+        matches!(
+            self,
+            Self::Dashed | Self::DashedAndMarkers | Self::DashedAndDiamonds
+        )
+    }
+
+    /// The marker at each point, if any.
+    pub fn marker(self) -> Option<Marker> {
+        match self {
+            Self::LineAndMarkers | Self::DashedAndMarkers | Self::Markers => Some(Marker::Circle),
+            Self::LineAndDiamonds | Self::DashedAndDiamonds => Some(Marker::Diamond),
+            Self::Line | Self::Dashed | Self::Gap => None,
+        }
+    }
+
+    /// The style of a crack end's series: end 1 (`tip` 0) solid, end 2
+    /// dashed; circles, or diamonds for `diamonds` (K_II).
+    pub fn of_end(tip: usize, diamonds: bool) -> Self {
+        match (tip == 0, diamonds) {
+            (true, false) => Self::LineAndMarkers,
+            (false, false) => Self::DashedAndMarkers,
+            (true, true) => Self::LineAndDiamonds,
+            (false, true) => Self::DashedAndDiamonds,
+        }
+    }
 }
 
 /// One named series.
@@ -68,6 +117,15 @@ pub struct Figure {
     pub notes: Vec<Note>,
     /// y values the axis range always includes.
     pub include_y: Vec<f64>,
+    /// x values the axis range always includes.
+    pub include_x: Vec<f64>,
+    /// The y axis stops here: a point above it (an outlier that would
+    /// flatten the rest) is drawn as a mark at the axis's top edge, with
+    /// its value in a note; the exported numbers keep it.
+    pub y_max: Option<f64>,
+    /// What the line styles and markers mean, said once beside the legend
+    /// (`solid: end 1, dashed: end 2`).
+    pub key: String,
     /// x counts something (growth steps): ticks at whole numbers only.
     pub x_whole: bool,
     /// One legend entry per colour, named up to [`COMPACT_CUT`] (the race:
@@ -170,6 +228,32 @@ impl Figure {
         marks
     }
 
+    /// The notes' marks as [`note_marks`](Self::note_marks), with marks
+    /// closer than `near` (x, y, in axis units) merged into the first:
+    /// numbers at nearby points were drawn over each other ("3, 9" on
+    /// "4").
+    pub fn note_marks_near(&self, near: [f64; 2]) -> Vec<([f64; 2], String)> {
+        let mut merged: Vec<([f64; 2], String)> = Vec::new();
+        for (at, numbers) in self.note_marks() {
+            let close = |m: &&mut ([f64; 2], String)| {
+                (m.0[0] - at[0]).abs() <= near[0] && (m.0[1] - at[1]).abs() <= near[1]
+            };
+            match merged.iter_mut().find(|m| close(m)) {
+                Some((_, first)) => {
+                    let _ = write!(first, ", {numbers}");
+                }
+                None => merged.push((at, numbers)),
+            }
+        }
+        merged
+    }
+
+    /// Where a point is drawn: at the axis's top edge when above
+    /// [`y_max`](Self::y_max).
+    pub fn shown_y(&self, y: f64) -> f64 {
+        self.y_max.map_or(y, |top| y.min(top))
+    }
+
     /// A series' name in the legend (cut short in a compact legend).
     pub fn legend_name<'a>(&self, s: &'a Series) -> &'a str {
         if self.compact_legend {
@@ -203,15 +287,21 @@ impl Figure {
         out
     }
 
-    /// Data range `(x_lo, x_hi, y_lo, y_hi)`, padded.
-    fn bounds(&self) -> (f64, f64, f64, f64) {
+    /// Data range `(x_lo, x_hi, y_lo, y_hi)`, padded (y at most
+    /// [`y_max`](Self::y_max)).
+    pub fn bounds(&self) -> (f64, f64, f64, f64) {
         let points = || self.series.iter().flat_map(|s| &s.points);
         let (x0, x1) = padded_range(
             points()
                 .map(|p| p[0])
-                .chain(self.vlines.iter().map(|v| v.1)),
+                .chain(self.vlines.iter().map(|v| v.1))
+                .chain(self.include_x.iter().copied()),
         );
-        let (y0, y1) = padded_range(points().map(|p| p[1]).chain(self.include_y.iter().copied()));
+        let (y0, y1) = padded_range(
+            points()
+                .map(|p| self.shown_y(p[1]))
+                .chain(self.include_y.iter().copied()),
+        );
         (x0, x1, y0, y1)
     }
 
@@ -276,13 +366,13 @@ impl Figure {
                 .points
                 .iter()
                 .filter(|p| p[1].is_finite())
-                .map(|p| (sx(p[0]), sy(p[1])))
+                .map(|p| (sx(p[0]), sy(self.shown_y(p[1]))))
                 .collect();
-            if s.style != Style::Markers && at.len() > 1 {
+            if s.style.has_line() && at.len() > 1 {
                 let path: Vec<String> = at.iter().map(|(x, y)| format!("{x:.1},{y:.1}")).collect();
                 let dash = match s.style {
-                    Style::Dashed => " stroke-dasharray=\"6 4\"",
                     Style::Gap => " stroke-dasharray=\"1.5 4\"",
+                    style if style.dashed() => " stroke-dasharray=\"6 4\"",
                     _ => "",
                 };
                 let _ = writeln!(
@@ -291,13 +381,22 @@ impl Figure {
                     path.join(" ")
                 );
             }
-            if matches!(s.style, Style::Markers | Style::LineAndMarkers) {
-                for (x, y) in &at {
-                    let _ = writeln!(
+            for (x, y) in &at {
+                let _ = match s.style.marker() {
+                    Some(Marker::Circle) => writeln!(
                         svg,
                         "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"3\" fill=\"{c}\"/>"
-                    );
-                }
+                    ),
+                    Some(Marker::Diamond) => writeln!(
+                        svg,
+                        "<polygon points=\"{x:.1},{:.1} {:.1},{y:.1} {x:.1},{:.1} {:.1},{y:.1}\" fill=\"{c}\"/>",
+                        y - 4.0,
+                        x + 4.0,
+                        y + 4.0,
+                        x - 4.0
+                    ),
+                    None => Ok(()),
+                };
             }
         }
         for (name, x, colour) in &self.vlines {
@@ -316,7 +415,7 @@ impl Figure {
                 svg,
                 "<text x=\"{:.1}\" y=\"{:.1}\" fill=\"#a00\">{} {}</text>",
                 sx(n.at[0]) + 6.0,
-                sy(n.at[1]) + 4.0,
+                sy(self.shown_y(n.at[1])) + 4.0,
                 NOTE_MARKS[0],
                 escape(&n.text)
             );

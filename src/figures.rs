@@ -31,6 +31,78 @@ pub fn colour(i: usize) -> Color32 {
     PALETTE[i % PALETTE.len()]
 }
 
+/// The hues of the drawn flaws' families (flaw k: `FLAW_HUES[k % 5]`): a
+/// flaw, its ends and its secondary cracks are shades of one hue.
+const FLAW_HUES: [Color32; 5] = [
+    PALETTE[0],
+    PALETTE[1],
+    PALETTE[2],
+    PALETTE[4],
+    PALETTE[5],
+];
+
+/// The hue of the cracks started in the intact rock: a family of their own.
+const ROCK_HUE: Color32 = PALETTE[3];
+
+/// Shade `k` of `hue`: the hue itself, then alternately darker and lighter,
+/// each a step further (kept legible on the dark and the light theme).
+pub fn shade(hue: Color32, k: usize) -> Color32 {
+    let step = k.div_ceil(2).min(3) as f32;
+    let mix = |c: u8, to: f32, t: f32| (f32::from(c) + (to - f32::from(c)) * t).round() as u8;
+    let (to, t) = if k == 0 {
+        return hue;
+    } else if k % 2 == 1 {
+        (0.0, 0.22 * step)
+    } else {
+        (255.0, 0.3 * step)
+    };
+    Color32::from_rgb(mix(hue.r(), to, t), mix(hue.g(), to, t), mix(hue.b(), to, t))
+}
+
+/// Which family a crack belongs to: its drawn flaw, or the intact rock.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum Family {
+    Flaw(usize),
+    Rock,
+}
+
+fn family(view: &SolutionView, crack: usize) -> Family {
+    match view.lineage.get(crack) {
+        Some(l) if l.is_intact() => Family::Rock,
+        Some(l) => Family::Flaw(l.flaw),
+        None => Family::Flaw(crack),
+    }
+}
+
+/// The colour of each (crack, end) of `tips`: its family's hue, shaded by
+/// its place in the family (the flaw's end 1, end 2, then its secondary
+/// cracks' ends in order).
+fn tip_colours(
+    view: &SolutionView,
+    tips: impl Iterator<Item = (usize, usize)>,
+) -> BTreeMap<(usize, usize), Color32> {
+    let mut by_family: BTreeMap<Family, Vec<(usize, usize)>> = BTreeMap::new();
+    for t in tips {
+        let members = by_family.entry(family(view, t.0)).or_default();
+        if !members.contains(&t) {
+            members.push(t);
+        }
+    }
+    let mut out = BTreeMap::new();
+    for (f, mut members) in by_family {
+        // the drawn flaw's own ends first, then its secondary cracks
+        members.sort_by_key(|&(c, t)| (view.lineage.get(c).is_none_or(|l| l.drawn == 0), c, t));
+        let hue = match f {
+            Family::Flaw(k) => FLAW_HUES[k % FLAW_HUES.len()],
+            Family::Rock => ROCK_HUE,
+        };
+        for (k, m) in members.into_iter().enumerate() {
+            out.insert(m, shade(hue, k));
+        }
+    }
+    out
+}
+
 /// The figures of a plot tab (empty when there is nothing to show yet; the
 /// Study tab has two: angle and λ_cr against the parameter). `specimen` is
 /// the specimen's width and height, m.
@@ -44,12 +116,14 @@ pub fn figures(
     let figure = match tab {
         PlotTab::ResidualBySweep => residual(
             "residual_by_sweep",
-            "sweep [–]",
+            iteration_label(view.solver),
+            true,
             view.residual_by_sweep.iter().map(|p| [p.x, p.y]),
         ),
         PlotTab::ResidualByTime => residual(
             "residual_by_time",
             "time [s]",
+            false,
             view.residual_by_time.iter().map(|p| [p.x, p.y]),
         ),
         PlotTab::Sifs => sifs(view),
@@ -63,13 +137,45 @@ pub fn figures(
     figure.into_iter().collect()
 }
 
-fn residual(id: &str, x_label: &str, points: impl Iterator<Item = [f64; 2]>) -> Option<Figure> {
+/// The residual plot's x axis: what the solver counts (the status line's
+/// unit): the automaton's sweeps, CG iterations, or the direct solver's
+/// linear solves (one per contact iteration).
+pub fn iteration_label(kind: cdca::scene::SolverKind) -> &'static str {
+    match kind {
+        cdca::scene::SolverKind::Automaton => "sweep [–]",
+        cdca::scene::SolverKind::Cg | cdca::scene::SolverKind::Multigrid => "CG iteration [–]",
+        cdca::scene::SolverKind::Direct => "linear solve [–]",
+    }
+}
+
+/// The residual against iterations (`counted`: from 0, whole numbers) or
+/// time. The y axis spans whole decades around the values, so that it
+/// carries at least two labelled ticks (a residual within one decade had
+/// none), and x starts at 0 (one Step's single point sat alone on an axis
+/// from 0.50 to 1.45).
+fn residual(
+    id: &str,
+    x_label: &str,
+    counted: bool,
+    points: impl Iterator<Item = [f64; 2]>,
+) -> Option<Figure> {
     let points: Vec<[f64; 2]> = points.collect();
+    let finite = || points.iter().map(|p| p[1]).filter(|y| y.is_finite());
+    let lo = finite().fold(f64::INFINITY, f64::min).floor();
+    let hi = finite().fold(f64::NEG_INFINITY, f64::max).ceil();
+    let include_y = if lo.is_finite() && hi.is_finite() {
+        vec![lo.min(hi - 1.0), hi]
+    } else {
+        Vec::new()
+    };
     (!points.is_empty()).then(|| Figure {
         id: id.to_owned(),
         x_label: x_label.to_owned(),
         y_label: "relative residual |f − K u| / |f| [–], log".to_owned(),
         y_ticks: YTicks::Log,
+        include_y,
+        include_x: vec![0.0],
+        x_whole: counted,
         series: vec![Series {
             name: "relative residual".to_owned(),
             colour: colour(0),
@@ -98,16 +204,22 @@ fn per_tip(
 /// solid line joins two values only when no step lies between them, and a
 /// dotted [`Style::Gap`] links a piece to the next across steps in which
 /// the tip did not grow.
+/// Each (crack, end) is coloured by its flaw's family ([`tip_colours`]),
+/// end 1 solid and end 2 dashed; the third key's 2 (K_II) has diamonds.
 fn step_series(
+    view: &SolutionView,
     series: BTreeMap<(usize, usize, u8), Vec<[f64; 2]>>,
     name: impl Fn((usize, usize, u8)) -> String,
 ) -> Vec<Series> {
+    let colours = tip_colours(view, series.keys().map(|&(c, t, _)| (c, t)));
     let mut out = Vec::new();
-    for (i, (key, points)) in series.into_iter().enumerate() {
+    for (key, points) in series {
         let name = name(key);
+        let colour = colours.get(&(key.0, key.1)).copied().unwrap_or(PALETTE[0]);
+        let style = Style::of_end(key.1, key.2 == 2);
         let piece = |style, points: Vec<[f64; 2]>| Series {
             name: name.clone(),
-            colour: colour(i),
+            colour,
             style,
             points,
         };
@@ -116,7 +228,7 @@ fn step_series(
             if let Some(end) = last {
                 out.push(piece(Style::Gap, vec![end, run[0]]));
             }
-            out.push(piece(Style::LineAndMarkers, run.to_vec()));
+            out.push(piece(style, run.to_vec()));
             last = run.last().copied();
         }
     }
@@ -140,10 +252,14 @@ fn sifs(view: &SolutionView) -> Option<Figure> {
         x_label: "growth step [–]".to_owned(),
         y_label: "K [MPa·√m]".to_owned(),
         x_whole: true,
-        series: step_series(series, |(c, t, k)| {
+        // one legend entry per crack end (its colour and line), the modes
+        // told apart by their markers
+        series: step_series(view, series, |(c, t, k)| {
             let mode = if k == 1 { "I" } else { "II" };
-            format!("K_{mode} {} end {}", view.crack_name(c), t + 1)
+            format!("{} end {}{COMPACT_CUT}K_{mode}", view.crack_name(c), t + 1)
         }),
+        compact_legend: true,
+        key: "circles: K_I, diamonds: K_II; solid: end 1, dashed: end 2".to_owned(),
         include_y: vec![0.0],
         ..Figure::default()
     })
@@ -162,9 +278,10 @@ fn angles(view: &SolutionView) -> Option<Figure> {
         y_label: "kink angle θ [°]".to_owned(),
         x_whole: true,
         y_ticks: YTicks::Degrees,
-        series: step_series(series, |(c, t, _)| {
+        series: step_series(view, series, |(c, t, _)| {
             format!("{} end {}", view.crack_name(c), t + 1)
         }),
+        key: "solid: end 1, dashed: end 2".to_owned(),
         include_y: vec![0.0],
         ..Figure::default()
     })
@@ -321,7 +438,7 @@ fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure>
             points: rock,
         });
     }
-    Some(Figure {
+    let mut fig = Figure {
         id: "load_factor".to_owned(),
         x_label: "total crack length [mm]".to_owned(),
         y_label: "load factor λ [–]".to_owned(),
@@ -329,7 +446,43 @@ fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure>
         notes,
         include_y: vec![0.0],
         ..Figure::default()
-    })
+    };
+    fig.y_max = robust_top(fig.series.iter().flat_map(|s| s.points.iter().map(|p| p[1])));
+    if let Some(top) = fig.y_max {
+        for p in h.iter().map(point).filter(|p| p[1] > top) {
+            fig.notes.push(Note {
+                at: p,
+                text: format!(
+                    "λ = {:.3} at {:.1} mm: off the scale (the axis stops at {top:.2}), marked at its top edge",
+                    p[1], p[0]
+                ),
+            });
+        }
+    }
+    Some(fig)
+}
+
+/// The top of a y axis that shows an outlier without flattening the rest:
+/// `None` unless the largest value lies beyond the upper fence (the upper
+/// quartile plus three interquartile ranges) and is more than 1.5 times
+/// the largest value within it; then 1.15 times that value. (The default
+/// run's λ = 7.02 at its last step flattened steps near 0.6.)
+pub fn robust_top(values: impl Iterator<Item = f64>) -> Option<f64> {
+    let mut v: Vec<f64> = values.filter(|x| x.is_finite()).collect();
+    if v.len() < 4 {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    let quartile = |f: f64| v[((v.len() - 1) as f64 * f).round() as usize];
+    let (q1, q3) = (quartile(0.25), quartile(0.75));
+    let fence = q3 + 3.0 * (q3 - q1).max(0.05 * q3.abs());
+    let kept = v
+        .iter()
+        .copied()
+        .filter(|&x| x <= fence)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let top = v[v.len() - 1];
+    (top > fence && kept > 0.0 && top > 1.5 * kept).then_some(1.15 * kept)
 }
 
 fn race_figure(race: &Race) -> Figure {
@@ -462,6 +615,79 @@ mod tests {
     /// The specimen: 30 mm square.
     const SIZE: [f64; 2] = [0.03, 0.03];
 
+    /// The default run's load factors with its last step's λ = 7.02: the
+    /// axis stops at 1.15 × 0.70 (the largest of the rest), the outlier
+    /// marked at the edge with a note; an even rise is not clipped.
+    #[test]
+    fn an_outlier_lambda_is_clipped_with_a_note() {
+        let top = robust_top([0.5, 0.55, 0.6, 0.62, 0.65, 0.7, 7.02].into_iter());
+        assert!(top.is_some_and(|t| (t - 0.805).abs() < 1e-12), "{top:?}");
+        assert_eq!(robust_top([0.5, 0.8, 1.1, 1.4, 1.7, 2.0].into_iter()), None);
+        let mut history: Vec<GrowthStepReport> = (1..=7)
+            .map(|k| step(k, [0.5, 0.55, 0.6, 0.62, 0.65, 0.7, 7.02][k - 1], 2, 10.0))
+            .collect();
+        for s in &mut history {
+            s.grown[0].y = 0.015;
+        }
+        let view = SolutionView {
+            history,
+            ..SolutionView::default()
+        };
+        let load = &figures(PlotTab::LoadFactor, &view, None, None, SIZE)[0];
+        assert!(load.y_max.is_some_and(|t| (t - 0.805).abs() < 1e-12));
+        assert_eq!(load.notes.len(), 1, "{:?}", load.notes);
+        assert!(load.notes[0].text.starts_with("λ = 7.020 at 7.5 mm: off the scale"));
+        assert_eq!(load.shown_y(7.02), load.y_max.unwrap_or_default());
+        // the numbers exported keep the outlier
+        assert!(load.to_csv().contains(",7.02\n"));
+    }
+
+    /// K and angles are coloured by family: a flaw's ends and its secondary
+    /// crack are shades of one hue, every (crack, end) its own colour, the
+    /// cracks started in the intact rock another hue; end 2 is dashed, K_II
+    /// has diamonds. (Ten series used to cycle eight colours: two blues.)
+    #[test]
+    fn k_series_are_coloured_by_flaw_family() {
+        use cdca::scene::Lineage;
+        let mut rock = Lineage::secondary(0);
+        rock.ends = [cdca::report::Part::Intact; 2];
+        let lineage = vec![Lineage::drawn(0, 2), Lineage::drawn(1, 2), Lineage::secondary(0), rock];
+        let mut s = step(1, 0.5, 0, 10.0);
+        s.tips = [(0, 0), (0, 1), (1, 0), (1, 1), (2, 0), (3, 1)]
+            .iter()
+            .map(|&(crack, tip)| TipReport {
+                crack,
+                tip,
+                k1: 1e6,
+                ..TipReport::default()
+            })
+            .collect();
+        let view = SolutionView {
+            history: vec![s],
+            lineage,
+            ..SolutionView::default()
+        };
+        let sifs = &figures(PlotTab::Sifs, &view, None, None, SIZE)[0];
+        let colour = |name: &str| {
+            sifs.series
+                .iter()
+                .find(|s| s.name == name)
+                .map(|s| (s.colour, s.style))
+                .unwrap_or_else(|| panic!("{name}"))
+        };
+        let c1e1 = colour("Crack 1 end 1 — K_I");
+        assert_eq!(c1e1, (FLAW_HUES[0], Style::LineAndMarkers));
+        assert_eq!(colour("Crack 1 end 2 — K_II"), (shade(FLAW_HUES[0], 1), Style::DashedAndDiamonds));
+        assert_eq!(colour("Crack 1 · secondary 1 end 1 — K_I").0, shade(FLAW_HUES[0], 2));
+        assert_eq!(colour("Crack 2 end 1 — K_I").0, FLAW_HUES[1]);
+        assert_eq!(colour("Rock crack 1 end 2 — K_I"), (ROCK_HUE, Style::DashedAndMarkers));
+        let mut colours: Vec<[u8; 4]> = sifs.legend().map(|s| s.colour.to_array()).collect();
+        assert_eq!(colours.len(), 6, "one legend entry per crack end");
+        colours.sort_unstable();
+        colours.dedup();
+        assert_eq!(colours.len(), 6, "six crack ends, six colours");
+    }
+
     /// The race's legend is one entry per iterative solver (its energy and
     /// K errors share a colour; the line styles are said once beside the
     /// legend), not two long entries per solver.
@@ -520,7 +746,7 @@ mod tests {
         assert_eq!(angles.y_ticks, YTicks::Degrees);
         let sifs = &figures(PlotTab::Sifs, &view, None, None, SIZE)[0];
         let k1_tip0 = &sifs.series[0];
-        assert_eq!(k1_tip0.name, "K_I Crack 1 end 1");
+        assert_eq!(k1_tip0.name, "Crack 1 end 1 — K_I");
         assert_eq!(k1_tip0.points[2], [3.0, 3.0], "K in MPa·√m");
         let load = &figures(PlotTab::LoadFactor, &view, None, None, SIZE)[0];
         // step 3 ran a wing to the top edge (y = 30 mm) and left one tip free
@@ -565,10 +791,11 @@ mod tests {
             angles.series.iter().map(|s| (s.style, &s.points)).collect();
         assert_eq!(
             pieces,
+            // the tip is end 2: dashed
             vec![
-                (Style::LineAndMarkers, &vec![[1.0, 70.0], [2.0, 60.0]]),
+                (Style::DashedAndMarkers, &vec![[1.0, 70.0], [2.0, 60.0]]),
                 (Style::Gap, &vec![[2.0, 60.0], [5.0, 20.0]]),
-                (Style::LineAndMarkers, &vec![[5.0, 20.0]]),
+                (Style::DashedAndMarkers, &vec![[5.0, 20.0]]),
             ]
         );
         assert_eq!(angles.legend().count(), 1);

@@ -9,12 +9,13 @@
 
 use egui::{Color32, Pos2, ProgressBar, RichText, Sense, Stroke, Ui, Vec2};
 use egui_plot::{
-    AxisHints, GridInput, Line, LineStyle, Plot, PlotPoint, PlotPoints, Points, Text, VLine,
+    AxisHints, GridInput, Line, LineStyle, MarkerShape, Plot, PlotPoint, PlotPoints, Points, Text,
+    VLine,
 };
 
 use crate::command::{Command, Export, PlotFormat};
 use crate::compare::Race;
-use crate::figure::{Figure, NOTE_MARKS, Style, YTicks, tick_label, tick_step};
+use crate::figure::{Figure, Marker, NOTE_MARKS, Style, YTicks, tick_label, tick_step};
 use crate::figures::figures;
 use crate::plot_tab::PlotTab;
 use crate::solution::SolutionView;
@@ -70,8 +71,7 @@ pub fn plots_ui(
                     figure_ui(ui, PlotTab::StudyMap, i, fig, cmds);
                 });
             } else {
-                ui.horizontal(|ui| super::study_file::mode_ui(ui, file_setup));
-                study_ui(ui, v.scene, v.study, study_setup, &figs, cmds);
+                study_ui(ui, v.scene, v.study, study_setup, file_setup, &figs, cmds);
             }
         }
         _ => match figs.first() {
@@ -119,7 +119,16 @@ fn spacer(kind: YTicks, min_step: f64) -> impl Fn(GridInput) -> Vec<egui_plot::G
     })
 }
 
-/// The legend above the data and the export buttons, then the plot.
+/// Width of the legend beside a plot, px.
+const LEGEND_WIDTH: f32 = 210.0;
+
+/// Room kept right of a plot, px: its last x tick label is centred on the
+/// data's right edge and was cut off there ("0.6(" on the race).
+const RIGHT_ROOM: f32 = 18.0;
+
+/// The legend, the key and the export buttons beside the plot (above it
+/// where the panel is narrow), then the plot. Beside it, a long legend (a
+/// run with ten crack ends) no longer takes the plot's height.
 pub(crate) fn figure_ui(
     ui: &mut Ui,
     tab: PlotTab,
@@ -127,32 +136,97 @@ pub(crate) fn figure_ui(
     fig: &Figure,
     cmds: &mut Vec<Command>,
 ) {
-    ui.horizontal_wrapped(|ui| {
-        for s in fig.legend() {
-            swatch(ui, s.colour, Some(s.style));
+    if ui.available_width() >= 2.5 * LEGEND_WIDTH {
+        let plot_width = ui.available_width() - LEGEND_WIDTH - ui.spacing().item_spacing.x;
+        let height = ui.available_height();
+        ui.horizontal_top(|ui| {
+            ui.allocate_ui_with_layout(
+                egui::vec2(plot_width, height),
+                egui::Layout::top_down(egui::Align::Min),
+                |ui| plot_and_notes_ui(ui, fig),
+            );
+            ui.allocate_ui_with_layout(
+                egui::vec2(LEGEND_WIDTH, height),
+                egui::Layout::top_down(egui::Align::Min),
+                |ui| {
+                    ui.set_width(LEGEND_WIDTH);
+                    // within the panel's clip (its inner margin below)
+                    let room = (ui.clip_rect().bottom() - ui.cursor().top()).min(height);
+                    egui::ScrollArea::vertical()
+                        .id_salt(("legend", &fig.id))
+                        .max_height(room)
+                        .show(ui, |ui| {
+                            ui.horizontal(|ui| export_buttons_ui(ui, tab, index, cmds));
+                            legend_ui(ui, fig, true);
+                        });
+                },
+            );
+        });
+    } else {
+        ui.horizontal_wrapped(|ui| {
+            legend_ui(ui, fig, false);
+            export_buttons_ui(ui, tab, index, cmds);
+        });
+        plot_and_notes_ui(ui, fig);
+    }
+}
+
+/// The legend's entries (one per line in a column, else wrapped whole) and
+/// the key to the line styles.
+fn legend_ui(ui: &mut Ui, fig: &Figure, column: bool) {
+    let entry = |ui: &mut Ui, colour, style, name: &str| {
+        swatch(ui, colour, style);
+        if column {
+            ui.add(egui::Label::new(name).wrap());
+        } else {
             // an entry moves to the next row whole, never cut mid-phrase
-            ui.add(egui::Label::new(fig.legend_name(s)).extend());
+            ui.add(egui::Label::new(name).extend());
         }
-        for (name, _, colour) in &fig.vlines {
-            swatch(ui, *colour, None);
-            ui.label(name);
+    };
+    for s in fig.legend() {
+        if column {
+            ui.horizontal_top(|ui| entry(ui, s.colour, Some(s.style), fig.legend_name(s)));
+        } else {
+            entry(ui, s.colour, Some(s.style), fig.legend_name(s));
         }
-        for (format, label, hint) in [
-            (PlotFormat::Csv, "CSV…", "Save this plot's numbers as CSV"),
-            (
-                PlotFormat::Svg,
-                "SVG…",
-                "Save this plot as an SVG picture (for slides)",
-            ),
-        ] {
-            if ui.small_button(label).on_hover_text(hint).clicked() {
-                cmds.push(Command::Export(Export::Plot { tab, index, format }));
-            }
+    }
+    for (name, _, colour) in &fig.vlines {
+        if column {
+            ui.horizontal_top(|ui| entry(ui, *colour, None, name));
+        } else {
+            entry(ui, *colour, None, name);
         }
-    });
+    }
+    if !fig.key.is_empty() {
+        if column {
+            ui.add(egui::Label::new(RichText::new(&fig.key).weak()).wrap());
+        } else {
+            ui.add(egui::Label::new(RichText::new(&fig.key).weak()).extend());
+        }
+    }
+}
+
+fn export_buttons_ui(ui: &mut Ui, tab: PlotTab, index: usize, cmds: &mut Vec<Command>) {
+    for (format, label, hint) in [
+        (PlotFormat::Csv, "CSV…", "Save this plot's numbers as CSV"),
+        (
+            PlotFormat::Svg,
+            "SVG…",
+            "Save this plot as an SVG picture (for slides)",
+        ),
+    ] {
+        if ui.small_button(label).on_hover_text(hint).clicked() {
+            cmds.push(Command::Export(Export::Plot { tab, index, format }));
+        }
+    }
+}
+
+/// The plot, its numbered note marks, and the notes' words below it.
+fn plot_and_notes_ui(ui: &mut Ui, fig: &Figure) {
     // the notes' lines below the plot keep their room
     let notes = fig.notes.len() as f32 * (ui.text_style_height(&egui::TextStyle::Small) + 4.0);
     let height = (ui.available_height() - notes).max(MIN_PLOT_HEIGHT);
+    let width = (ui.available_width() - RIGHT_ROOM).max(0.0);
     let kind = fig.y_ticks;
     let x_min_step = if fig.x_whole { 1.0 } else { 0.0 };
     // the x axis's tick labels at the spacing the grid spacer gives them:
@@ -172,6 +246,7 @@ pub(crate) fn figure_ui(
         .custom_x_axes(vec![x_axis])
         .y_axis_label(&fig.y_label)
         .y_axis_min_width(Y_AXIS_WIDTH)
+        .width(width)
         .height(height)
         // room around the data, so points at the extremes are whole
         .set_margin_fraction(Vec2::new(0.03, 0.08))
@@ -179,8 +254,17 @@ pub(crate) fn figure_ui(
         .x_grid_spacer(spacer(YTicks::Decimal, x_min_step))
         .y_grid_spacer(spacer(kind, 0.0))
         .y_axis_formatter(move |m, _| tick_label(kind, m.value, m.step_size));
-    for y in &fig.include_y {
-        plot = plot.include_y(*y);
+    for x in &fig.include_x {
+        plot = plot.include_x(*x);
+    }
+    let (x0, x1, y0, y1) = fig.bounds();
+    if let Some(top) = fig.y_max {
+        // the axis stops at `top`: an outlier is a mark at the edge
+        plot = plot.default_y_bounds(y0, top + 0.02 * (top - y0));
+    } else {
+        for y in &fig.include_y {
+            plot = plot.include_y(*y);
+        }
     }
     // one copy per series, borrowed by its line and its markers
     let points: Vec<Vec<PlotPoint>> = fig
@@ -193,42 +277,60 @@ pub(crate) fn figure_ui(
                 .collect()
         })
         .collect();
-    plot.show(ui, |plot| {
+    let shown = plot.show(ui, |plot| {
         for (s, points) in fig.series.iter().zip(&points) {
             let pts = || PlotPoints::Borrowed(points);
-            match s.style {
-                Style::Line => plot.line(Line::new(&s.name, pts()).color(s.colour)),
-                Style::Dashed => plot.line(
-                    Line::new(&s.name, pts())
-                        .color(s.colour)
-                        .style(LineStyle::dashed_loose()),
-                ),
-                Style::LineAndMarkers => {
-                    plot.line(Line::new(&s.name, pts()).color(s.colour));
-                    plot.points(Points::new(&s.name, pts()).color(s.colour).radius(2.5));
+            if s.style.has_line() {
+                let style = if s.style == Style::Gap {
+                    LineStyle::dotted_loose()
+                } else if s.style.dashed() {
+                    LineStyle::dashed_loose()
+                } else {
+                    LineStyle::Solid
+                };
+                plot.line(Line::new(&s.name, pts()).color(s.colour).style(style));
+            }
+            let (shape, radius) = match (s.style.marker(), s.style) {
+                (None, _) => continue,
+                (Some(_), Style::Markers) => (MarkerShape::Circle, 4.0),
+                (Some(Marker::Circle), _) => (MarkerShape::Circle, 2.5),
+                (Some(Marker::Diamond), _) => (MarkerShape::Diamond, 3.5),
+            };
+            plot.points(
+                Points::new(&s.name, pts())
+                    .color(s.colour)
+                    .shape(shape)
+                    .radius(radius),
+            );
+            // points above the axis's top: a triangle at the edge
+            if let Some(top) = fig.y_max {
+                let above: Vec<[f64; 2]> = s
+                    .points
+                    .iter()
+                    .filter(|p| p[1] > top)
+                    .map(|p| [p[0], top])
+                    .collect();
+                if !above.is_empty() {
+                    plot.points(
+                        Points::new(&s.name, above)
+                            .color(s.colour)
+                            .shape(MarkerShape::Up)
+                            .filled(true)
+                            .radius(6.0),
+                    );
                 }
-                Style::Markers => {
-                    plot.points(Points::new(&s.name, pts()).color(s.colour).radius(4.0));
-                }
-                Style::Gap => plot.line(
-                    Line::new(&s.name, pts())
-                        .color(s.colour)
-                        .style(LineStyle::dotted_loose()),
-                ),
             }
         }
         for (name, x, colour) in &fig.vlines {
             plot.vline(VLine::new(name, *x).color(*colour));
         }
         // numbered marks on the plot, their words below it: notes at
-        // nearby points used to run into each other; a mark in the right
-        // fifth of the data points at it from the left, so that it is not
-        // cut off at the plot's edge
-        let xs = || fig.series.iter().flat_map(|s| &s.points).map(|p| p[0]);
-        let x_lo = xs().fold(f64::INFINITY, f64::min);
-        let x_hi = xs().fold(f64::NEG_INFINITY, f64::max);
-        for (at, numbers) in fig.note_marks() {
-            let (text, anchor) = if at[0] > x_lo + 0.8 * (x_hi - x_lo) {
+        // nearby points share a mark; a mark in the right fifth of the
+        // data points at it from the left, so that it is not cut off at
+        // the plot's edge
+        let near = [0.06 * (x1 - x0), 0.12 * (y1 - y0)];
+        for (at, numbers) in fig.note_marks_near(near) {
+            let (text, anchor) = if at[0] > x0 + 0.8 * (x1 - x0) {
                 (
                     format!("{numbers} {}", NOTE_MARKS[1]),
                     egui::Align2::RIGHT_CENTER,
@@ -242,16 +344,26 @@ pub(crate) fn figure_ui(
             plot.text(
                 Text::new(
                     "note",
-                    PlotPoint::new(at[0], at[1]),
+                    PlotPoint::new(at[0], fig.shown_y(at[1])),
                     RichText::new(text).small().strong(),
                 )
                 .anchor(anchor),
             );
         }
     });
+    // named for assistive technology (and the UI tests): its axes
+    let name = plot_label(fig);
+    shown
+        .response
+        .widget_info(|| egui::WidgetInfo::labeled(egui::Role::Figure, true, &name));
     for (i, n) in fig.notes.iter().enumerate() {
         ui.small(format!("{}: {}", i + 1, n.text));
     }
+}
+
+/// A plot's name for assistive technology: `Plot: y against x`.
+pub fn plot_label(fig: &Figure) -> String {
+    format!("Plot: {} against {}", fig.y_label, fig.x_label)
 }
 
 /// A legend entry's sample of the series: its line, dashes or marker (a
@@ -261,29 +373,41 @@ pub(crate) fn swatch(ui: &mut Ui, colour: Color32, style: Option<Style>) {
     let p = ui.painter();
     let stroke = Stroke::new(2.0, colour);
     let (l, r, c) = (rect.left_center(), rect.right_center(), rect.center());
-    match style {
-        None => {
-            p.line_segment([rect.center_top(), rect.center_bottom()], stroke);
+    let Some(style) = style else {
+        p.line_segment([rect.center_top(), rect.center_bottom()], stroke);
+        return;
+    };
+    if style.dashed() || style == Style::Gap {
+        for k in 0..3 {
+            let x = l.x + 7.0 * k as f32;
+            p.line_segment(
+                [Pos2::new(x, c.y), Pos2::new((x + 4.0).min(r.x), c.y)],
+                stroke,
+            );
         }
-        Some(Style::Markers) => {
+    } else if style.has_line() {
+        p.line_segment([l, r], stroke);
+    }
+    match style.marker() {
+        Some(Marker::Circle) if style == Style::Markers => {
             p.circle_filled(c, 4.0, colour);
         }
-        Some(Style::Dashed | Style::Gap) => {
-            for k in 0..3 {
-                let x = l.x + 7.0 * k as f32;
-                p.line_segment(
-                    [Pos2::new(x, c.y), Pos2::new((x + 4.0).min(r.x), c.y)],
-                    stroke,
-                );
-            }
-        }
-        Some(Style::Line) => {
-            p.line_segment([l, r], stroke);
-        }
-        Some(Style::LineAndMarkers) => {
-            p.line_segment([l, r], stroke);
+        Some(Marker::Circle) => {
             p.circle_filled(c, 3.0, colour);
         }
+        Some(Marker::Diamond) => {
+            p.add(egui::Shape::convex_polygon(
+            vec![
+                c + Vec2::new(0.0, -4.0),
+                c + Vec2::new(4.0, 0.0),
+                c + Vec2::new(0.0, 4.0),
+                c + Vec2::new(-4.0, 0.0),
+            ],
+            colour,
+            Stroke::NONE,
+            ));
+        }
+        None => {}
     }
 }
 
@@ -295,10 +419,41 @@ fn study_ui(
     scene: &cdca::scene::SceneFile,
     study: Option<&Study>,
     setup: &mut StudySetup,
+    file_setup: &mut StudyFileSetup,
     figs: &[Figure],
     cmds: &mut Vec<Command>,
 ) {
     let running = study.is_some_and(|s| !s.finished());
+    // which of the two plots shows (λ_cr first): one at a time, each as
+    // tall as the panel allows (side by side beside the table they were
+    // about 200 × 90 px)
+    let shown_id = ui.id().with("study plot");
+    let mut shown: usize = ui.data(|d| d.get_temp(shown_id)).unwrap_or(1);
+    // the mode, the run's progress and the plot on one row
+    ui.horizontal(|ui| {
+        super::study_file::mode_ui(ui, file_setup);
+        if let Some(study) = study {
+            ui.separator();
+            ui.add(
+                ProgressBar::new(study.progress())
+                    .desired_width(160.0)
+                    .text(format!(
+                        "{} of {} values{}",
+                        study.points.len(),
+                        study.values.len(),
+                        if study.cancelled() {
+                            " (cancelled)"
+                        } else {
+                            ""
+                        }
+                    )),
+            );
+            ui.separator();
+            ui.selectable_value(&mut shown, 1, "λ_cr plot");
+            ui.selectable_value(&mut shown, 0, "Kink angle plot");
+        }
+    });
+    ui.data_mut(|d| d.insert_temp(shown_id, shown));
     ui.horizontal_wrapped(|ui| {
         let label = ui.label("Parameter");
         egui::ComboBox::from_id_salt("study path")
@@ -350,32 +505,23 @@ fn study_ui(
         ui.weak("Sweeps one scene parameter and plots the first growth step's kink angle and critical load against it (press Run study).");
         return;
     };
-    ui.add(ProgressBar::new(study.progress()).text(format!(
-        "{} of {} values{}",
-        study.points.len(),
-        study.values.len(),
-        if study.cancelled() {
-            " (cancelled)"
-        } else {
-            ""
-        }
-    )));
     if let Some(e) = study.points.iter().find_map(|p| p.error.as_deref()) {
         ui.colored_label(
             ui.visuals().warn_fg_color,
             format!("Some values failed: {e}"),
         );
     }
-    // the table at its own width (five short columns), the two plots
-    // sharing the rest: equal thirds squeezed the table past the panel
-    // once the canvas was narrower than about 800 px
+    // the table at its own width (five short columns), the plot the rest:
+    // equal thirds squeezed the table past the panel once the canvas was
+    // narrower than about 800 px
     let gap = ui.spacing().item_spacing.x;
     let table = STUDY_TABLE_WIDTH.min(0.4 * ui.available_width());
-    let plot = ((ui.available_width() - table - 2.0 * gap) / 2.0).max(0.0);
+    let plot = (ui.available_width() - table - 2.0 * gap).max(0.0);
     let height = ui.available_height();
     let down = egui::Layout::top_down(egui::Align::Min);
     ui.horizontal_top(|ui| {
-        for (i, fig) in figs.iter().enumerate().take(2) {
+        if let Some(fig) = figs.get(shown).or(figs.first()) {
+            let i = figs.get(shown).map_or(0, |_| shown);
             ui.allocate_ui_with_layout(egui::vec2(plot, height), down, |ui| {
                 ui.set_width(plot);
                 ui.push_id(i, |ui| figure_ui(ui, PlotTab::Study, i, fig, cmds));

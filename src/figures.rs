@@ -33,13 +33,7 @@ pub fn colour(i: usize) -> Color32 {
 
 /// The hues of the drawn flaws' families (flaw k: `FLAW_HUES[k % 5]`): a
 /// flaw, its ends and its secondary cracks are shades of one hue.
-const FLAW_HUES: [Color32; 5] = [
-    PALETTE[0],
-    PALETTE[1],
-    PALETTE[2],
-    PALETTE[4],
-    PALETTE[5],
-];
+const FLAW_HUES: [Color32; 5] = [PALETTE[0], PALETTE[1], PALETTE[2], PALETTE[4], PALETTE[5]];
 
 /// The hue of the cracks started in the intact rock: a family of their own.
 const ROCK_HUE: Color32 = PALETTE[3];
@@ -56,7 +50,11 @@ pub fn shade(hue: Color32, k: usize) -> Color32 {
     } else {
         (255.0, 0.3 * step)
     };
-    Color32::from_rgb(mix(hue.r(), to, t), mix(hue.g(), to, t), mix(hue.b(), to, t))
+    Color32::from_rgb(
+        mix(hue.r(), to, t),
+        mix(hue.g(), to, t),
+        mix(hue.b(), to, t),
+    )
 }
 
 /// Which family a crack belongs to: its drawn flaw, or the intact rock.
@@ -447,7 +445,11 @@ fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure>
         include_y: vec![0.0],
         ..Figure::default()
     };
-    fig.y_max = robust_top(fig.series.iter().flat_map(|s| s.points.iter().map(|p| p[1])));
+    fig.y_max = robust_top(
+        fig.series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p[1])),
+    );
     if let Some(top) = fig.y_max {
         for p in h.iter().map(point).filter(|p| p[1] > top) {
             fig.notes.push(Note {
@@ -636,7 +638,11 @@ mod tests {
         let load = &figures(PlotTab::LoadFactor, &view, None, None, SIZE)[0];
         assert!(load.y_max.is_some_and(|t| (t - 0.805).abs() < 1e-12));
         assert_eq!(load.notes.len(), 1, "{:?}", load.notes);
-        assert!(load.notes[0].text.starts_with("λ = 7.020 at 7.5 mm: off the scale"));
+        assert!(
+            load.notes[0]
+                .text
+                .starts_with("λ = 7.020 at 7.5 mm: off the scale")
+        );
         assert_eq!(load.shown_y(7.02), load.y_max.unwrap_or_default());
         // the numbers exported keep the outlier
         assert!(load.to_csv().contains(",7.02\n"));
@@ -651,7 +657,12 @@ mod tests {
         use cdca::scene::Lineage;
         let mut rock = Lineage::secondary(0);
         rock.ends = [cdca::report::Part::Intact; 2];
-        let lineage = vec![Lineage::drawn(0, 2), Lineage::drawn(1, 2), Lineage::secondary(0), rock];
+        let lineage = vec![
+            Lineage::drawn(0, 2),
+            Lineage::drawn(1, 2),
+            Lineage::secondary(0),
+            rock,
+        ];
         let mut s = step(1, 0.5, 0, 10.0);
         s.tips = [(0, 0), (0, 1), (1, 0), (1, 1), (2, 0), (3, 1)]
             .iter()
@@ -677,10 +688,19 @@ mod tests {
         };
         let c1e1 = colour("Crack 1 end 1 — K_I");
         assert_eq!(c1e1, (FLAW_HUES[0], Style::LineAndMarkers));
-        assert_eq!(colour("Crack 1 end 2 — K_II"), (shade(FLAW_HUES[0], 1), Style::DashedAndDiamonds));
-        assert_eq!(colour("Crack 1 · secondary 1 end 1 — K_I").0, shade(FLAW_HUES[0], 2));
+        assert_eq!(
+            colour("Crack 1 end 2 — K_II"),
+            (shade(FLAW_HUES[0], 1), Style::DashedAndDiamonds)
+        );
+        assert_eq!(
+            colour("Crack 1 · secondary 1 end 1 — K_I").0,
+            shade(FLAW_HUES[0], 2)
+        );
         assert_eq!(colour("Crack 2 end 1 — K_I").0, FLAW_HUES[1]);
-        assert_eq!(colour("Rock crack 1 end 2 — K_I"), (ROCK_HUE, Style::DashedAndMarkers));
+        assert_eq!(
+            colour("Rock crack 1 end 2 — K_I"),
+            (ROCK_HUE, Style::DashedAndMarkers)
+        );
         let mut colours: Vec<[u8; 4]> = sifs.legend().map(|s| s.colour.to_array()).collect();
         assert_eq!(colours.len(), 6, "one legend entry per crack end");
         colours.sort_unstable();

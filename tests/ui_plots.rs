@@ -88,7 +88,11 @@ fn race(h: &mut Harness<'_, WorkbenchApp>) {
             break;
         }
     }
-    assert!(h.state().race().is_some_and(cdca_workbench::compare::Race::finished));
+    assert!(
+        h.state()
+            .race()
+            .is_some_and(cdca_workbench::compare::Race::finished)
+    );
     h.run_steps(3);
 }
 
@@ -110,7 +114,11 @@ fn study(h: &mut Harness<'_, WorkbenchApp>) {
             break;
         }
     }
-    assert!(h.state().study().is_some_and(cdca_workbench::study::Study::finished));
+    assert!(
+        h.state()
+            .study()
+            .is_some_and(cdca_workbench::study::Study::finished)
+    );
     h.run_steps(3);
 }
 
@@ -121,7 +129,6 @@ struct Painted {
     text: String,
     rect: Rect,
     clip: Rect,
-    rows: usize,
 }
 
 /// Every unrotated text painted in the last frame.
@@ -133,7 +140,6 @@ fn painted_texts(h: &Harness<'_, WorkbenchApp>) -> Vec<Painted> {
                 text: t.galley.text().to_owned(),
                 rect: t.galley.rect.translate(t.pos.to_vec2()),
                 clip,
-                rows: t.galley.rows.iter().filter(|r| !r.glyphs.is_empty()).count(),
             }),
             _ => {}
         }
@@ -201,7 +207,11 @@ fn check_tab(h: &mut Harness<'_, WorkbenchApp>, tab: &str, min: [f32; 2]) -> Vec
     let shown = plots(h);
     // a run in which no tip grew (the overlapping pair: every step started
     // cracks in the intact rock) has no angles: the tab says so
-    let none_grew = h.state().growth_history().iter().all(|s| s.grown.is_empty());
+    let none_grew = h
+        .state()
+        .growth_history()
+        .iter()
+        .all(|s| s.grown.is_empty());
     if tab == "Angles" && none_grew {
         assert!(shown.is_empty());
         h.get_by_label_contains("No tip has grown in");
@@ -211,7 +221,10 @@ fn check_tab(h: &mut Harness<'_, WorkbenchApp>, tab: &str, min: [f32; 2]) -> Vec
             .filter(|t| t.rect.top() > canvas.bottom())
             .map(|t| t.text.clone())
             .collect();
-        problems.push(format!("{tab}: no plot ({:?}): {hint:?}", h.state().plot_tab()));
+        problems.push(format!(
+            "{tab}: no plot ({:?}): {hint:?}",
+            h.state().plot_tab()
+        ));
     }
     for (name, r) in &shown {
         let (y, x) = ticks(&texts, *r);
@@ -229,7 +242,11 @@ fn check_tab(h: &mut Harness<'_, WorkbenchApp>, tab: &str, min: [f32; 2]) -> Vec
     }
     // the legend beside a plot scrolls (its last lines cut by the scroll
     // area are a scroll away): left out
-    let legend = shown.iter().map(|p| p.1.right()).fold(f32::INFINITY, f32::min) + 4.0;
+    let legend = shown
+        .iter()
+        .map(|p| p.1.right())
+        .fold(f32::INFINITY, f32::min)
+        + 4.0;
     for t in texts
         .iter()
         .filter(|t| t.rect.left() < legend)
@@ -237,16 +254,23 @@ fn check_tab(h: &mut Harness<'_, WorkbenchApp>, tab: &str, min: [f32; 2]) -> Vec
         .filter(|t| t.clip.center().x > canvas.left() && t.clip.center().x < canvas.right())
     {
         if !t.clip.contains_rect(t.rect.shrink(0.5)) {
-            problems.push(format!("{tab}: {:?} at {:?} cut by {:?}", t.text, t.rect, t.clip));
+            problems.push(format!(
+                "{tab}: {:?} at {:?} cut by {:?}",
+                t.text, t.rect, t.clip
+            ));
         }
     }
     for n in h.query_all_by(|n| n.bounding_box().is_some()) {
         let r = n.rect();
-        let below = r.top() >= canvas.bottom() && r.center().x > canvas.left() && r.center().x < canvas.right();
+        let below = r.top() >= canvas.bottom()
+            && r.center().x > canvas.left()
+            && r.center().x < canvas.right();
         if below && !panel.contains_rect(r.shrink(0.5)) {
             let node = n.accesskit_node();
             let label = node.label().or_else(|| node.value()).unwrap_or_default();
-            problems.push(format!("{tab}: {label:?} at {r:?} outside the panel {panel:?}"));
+            problems.push(format!(
+                "{tab}: {label:?} at {r:?} outside the panel {panel:?}"
+            ));
         }
     }
     problems

@@ -397,14 +397,14 @@ pub(crate) fn swatch(ui: &mut Ui, colour: Color32, style: Option<Style>) {
         }
         Some(Marker::Diamond) => {
             p.add(egui::Shape::convex_polygon(
-            vec![
-                c + Vec2::new(0.0, -4.0),
-                c + Vec2::new(4.0, 0.0),
-                c + Vec2::new(0.0, 4.0),
-                c + Vec2::new(-4.0, 0.0),
-            ],
-            colour,
-            Stroke::NONE,
+                vec![
+                    c + Vec2::new(0.0, -4.0),
+                    c + Vec2::new(4.0, 0.0),
+                    c + Vec2::new(0.0, 4.0),
+                    c + Vec2::new(-4.0, 0.0),
+                ],
+                colour,
+                Stroke::NONE,
             ));
         }
         None => {}
@@ -427,7 +427,7 @@ fn study_ui(
     // which of the two plots shows (λ_cr first): one at a time, each as
     // tall as the panel allows (side by side beside the table they were
     // about 200 × 90 px)
-    let shown_id = ui.id().with("study plot");
+    let shown_id = ui.scope_id().with("study plot");
     let mut shown: usize = ui.data(|d| d.get_temp(shown_id)).unwrap_or(1);
     // the mode, the run's progress and the plot on one row
     ui.horizontal(|ui| {

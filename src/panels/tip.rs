@@ -52,7 +52,7 @@ pub fn tip_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
     }
     let name = |i: usize| {
         let t = &tips[i];
-        format!("Crack {}, end {}", t.crack + 1, t.tip + 1)
+        format!("{}, end {}", v.solution.crack_name(t.crack), t.tip + 1)
     };
     let mut selected = v.selected_tip;
     egui::ComboBox::from_label("Tip")

@@ -683,8 +683,7 @@ mod tests {
             sifs.series
                 .iter()
                 .find(|s| s.name == name)
-                .map(|s| (s.colour, s.style))
-                .unwrap_or_else(|| panic!("{name}"))
+                .map_or_else(|| panic!("{name}"), |s| (s.colour, s.style))
         };
         let c1e1 = colour("Crack 1 end 1 — K_I");
         assert_eq!(c1e1, (FLAW_HUES[0], Style::LineAndMarkers));

@@ -2,7 +2,7 @@
 //! linked through which cracks and at what load, the specimen's strength
 //! against the intact rock's, and when the wings, secondary cracks and
 //! cracks in the intact rock first started. Cracks are named as the Scene
-//! panel names them ([`SolutionView::crack_name`]), loads as λ and as the
+//! panel names them (`SolutionView::crack_name`), loads as λ and as the
 //! stress λ times the scene's reference stress.
 
 use cdca::report::{GrowthStepReport, Mode, Outcome};

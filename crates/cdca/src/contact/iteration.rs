@@ -38,7 +38,7 @@ use web_time::Instant;
 /// force `±τ_y` of slip points), solve it, map every point's state at the
 /// solution; at most `max_iterations` times. With a factor (the direct
 /// solver), an iteration that changes a state is solved on the faces'
-/// rows only ([`Self::state_change_on_the_faces`]).
+/// rows only (`Self::state_change_on_the_faces`).
 ///
 /// Friction is solved by an outer loop over the friction limits `τ_y`
 /// (with the default penalty `k_N = 100 E/h`, friction taken from the last

@@ -172,7 +172,7 @@ pub fn friction_limit(crack: &Crack, g_n: f64) -> f64 {
 /// Relative width of a stick/slip tie: a point whose trial traction is
 /// within `TIE · τ_y` of its friction limit τ_y carries the same traction
 /// (to that width) stuck or slipping, so the outer contact iteration keeps
-/// the state it has ([`keep_at_tie`]). Round-off puts such a point on
+/// the state it has (`keep_at_tie`). Round-off puts such a point on
 /// either side at each solve: a run's final solve at its last load starts
 /// from slips committed at exactly that load (trial = τ_y to 1e-12), and six
 /// points changed state at every iteration until the 200-iteration cap.

@@ -17,8 +17,8 @@ pub const ORDER_PLAIN: usize = 2;
 /// Collapsed order on triangles of cut elements without tip enrichment.
 pub const ORDER_CUT: usize = 3;
 /// Collapsed order on triangles of cut elements with tip enrichment (and
-/// of uncut ones near their tip), before [`refined_rule`] splits them:
-/// with [`ORDER_REFINED`] on the pieces it makes, ∫ 1/r over an element
+/// of uncut ones near their tip), before `refined_rule` splits them:
+/// with `ORDER_REFINED` on the pieces it makes, ∫ 1/r over an element
 /// whose tip lies 0.001–0.3 h outside it is exact to 2e-7
 /// (`near_tip_rules_integrate_one_over_r`). The orders before, 8 and 6,
 /// took 1.4 times the points; against them K moves by at most 6.2e-8 of

@@ -12,36 +12,9 @@ use cdca_workbench::{Command, Options, RunMode, WorkbenchApp};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 
-const SIZE: [f32; 2] = [1400.0, 900.0];
-
-fn harness(options: Options) -> Harness<'static, WorkbenchApp> {
-    Harness::builder()
-        .with_size(SIZE)
-        .with_max_steps(400)
-        .build_ui_state(
-            |ui, app: &mut WorkbenchApp| {
-                app.logic(ui.ctx());
-                app.ui(ui);
-            },
-            WorkbenchApp::new(options),
-        )
-}
-
-/// Steps frames until the runner pauses (at most `frames`).
-fn run_until_paused(h: &mut Harness<'_, WorkbenchApp>, frames: usize) {
-    for _ in 0..frames {
-        if h.state().run_mode() == RunMode::Paused {
-            break;
-        }
-        h.step();
-    }
-    assert_eq!(
-        h.state().run_mode(),
-        RunMode::Paused,
-        "the run ends within {frames} frames: {:?}",
-        h.state().message()
-    );
-}
+#[path = "support/harness.rs"]
+mod support;
+use support::{SIZE, grow, harness, no_solver, run_until_paused};
 
 /// Steps frames until no job holds the slot (at most `frames`).
 fn run_until_idle(h: &mut Harness<'_, WorkbenchApp>, frames: usize) {
@@ -330,27 +303,6 @@ fn a_run_stopped_by_the_load_cap_says_so() {
 }
 
 /// Options without the solver: the tests below exercise menus and editing.
-fn no_solver() -> Options {
-    Options {
-        solve_on_start: false,
-        auto_solve: false,
-        ..Options::default()
-    }
-}
-
-fn click_at(h: &mut Harness<'_, WorkbenchApp>, pos: egui::Pos2) {
-    h.event(egui::Event::PointerMoved(pos));
-    for pressed in [true, false] {
-        h.event(egui::Event::PointerButton {
-            pos,
-            button: egui::PointerButton::Primary,
-            pressed,
-            modifiers: egui::Modifiers::NONE,
-        });
-    }
-    h.run();
-}
-
 /// File ▸ Bundled scenes lists every bundled scene, the three two-flaw
 /// specimens included (they were missing), and opens the one clicked.
 #[test]
@@ -604,12 +556,18 @@ fn solve_to_end(h: &mut Harness<'_, WorkbenchApp>) {
     h.run_steps(2);
 }
 
-/// Clicks `button` (Grow one step, Run growth) and waits for the run to end.
-fn grow(h: &mut Harness<'_, WorkbenchApp>, button: &str) {
-    h.get_by_label(button).click();
-    h.run_steps(2);
-    run_until_paused(h, 20_000);
-    h.run_steps(2);
+/// A click of the primary button at `pos`.
+fn click_at(h: &mut Harness<'_, WorkbenchApp>, pos: egui::Pos2) {
+    h.event(egui::Event::PointerMoved(pos));
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+    }
+    h.run();
 }
 
 /// The largest x of a plot's CSV (`series,x,y` rows under a header).

@@ -11,18 +11,9 @@ const PROJECTOR: [f32; 2] = [1024.0, 640.0];
 const LAPTOP: [f32; 2] = [1280.0, 800.0];
 const PHONE: [f32; 2] = [390.0, 844.0];
 
-fn harness(size: [f32; 2], options: Options) -> Harness<'static, WorkbenchApp> {
-    Harness::builder()
-        .with_size(size)
-        .with_max_steps(400)
-        .build_ui_state(
-            |ui, app: &mut WorkbenchApp| {
-                app.logic(ui.ctx());
-                app.ui(ui);
-            },
-            WorkbenchApp::new(options),
-        )
-}
+#[path = "support/harness.rs"]
+mod support;
+use support::harness_sized as harness;
 
 /// The default scene, solved (release builds: the first frames solve it).
 fn solved(size: [f32; 2]) -> Harness<'static, WorkbenchApp> {

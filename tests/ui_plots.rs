@@ -6,53 +6,18 @@
 //! panel paints is cut off by its clip rectangle. They drive the solver:
 //! run them with `--release`.
 
-use cdca_workbench::{Command, Options, RunMode, WorkbenchApp};
+use cdca_workbench::{Command, Options, WorkbenchApp};
 use egui::Rect;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 
-const SIZE: [f32; 2] = [1400.0, 900.0];
+#[path = "support/harness.rs"]
+mod harness;
+use harness::{SIZE, grow, harness, run_until_paused};
 
 /// Smallest data area of a plot, px (width, height): the Study tab's two
 /// plots share the panel's width with its table.
 const MIN_PLOT: [f32; 2] = [400.0, 150.0];
-
-fn harness(options: Options) -> Harness<'static, WorkbenchApp> {
-    Harness::builder()
-        .with_size(SIZE)
-        .with_max_steps(400)
-        .build_ui_state(
-            |ui, app: &mut WorkbenchApp| {
-                app.logic(ui.ctx());
-                app.ui(ui);
-            },
-            WorkbenchApp::new(options),
-        )
-}
-
-/// Steps frames until the runner pauses (at most `frames`).
-fn run_until_paused(h: &mut Harness<'_, WorkbenchApp>, frames: usize) {
-    for _ in 0..frames {
-        if h.state().run_mode() == RunMode::Paused {
-            break;
-        }
-        h.step();
-    }
-    assert_eq!(
-        h.state().run_mode(),
-        RunMode::Paused,
-        "the run ends within {frames} frames: {:?}",
-        h.state().message()
-    );
-}
-
-/// Clicks `button` (Grow one step, Run growth) and waits for the run to end.
-fn grow(h: &mut Harness<'_, WorkbenchApp>, button: &str) {
-    h.get_by_label(button).click();
-    h.run_steps(2);
-    run_until_paused(h, 20_000);
-    h.run_steps(2);
-}
 
 /// The workbench with `file` (a bundled scene; `None`: the default scene)
 /// opened, solved and grown to the end of its run.

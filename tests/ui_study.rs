@@ -8,28 +8,15 @@ use cdca::study::row::without_seconds;
 use cdca::study::{RunKind, Study};
 use cdca_workbench::command::{Export, PlotFormat};
 use cdca_workbench::study_file::LoadedStudy;
-use cdca_workbench::{Command, Options, PlotTab, WorkbenchApp};
+use cdca_workbench::{Command, PlotTab, WorkbenchApp};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 
-const SIZE: [f32; 2] = [1400.0, 900.0];
+#[path = "support/harness.rs"]
+mod support;
 
 fn harness() -> Harness<'static, WorkbenchApp> {
-    let options = Options {
-        solve_on_start: false,
-        auto_solve: false,
-        ..Options::default()
-    };
-    Harness::builder()
-        .with_size(SIZE)
-        .with_max_steps(400)
-        .build_ui_state(
-            |ui, app: &mut WorkbenchApp| {
-                app.logic(ui.ctx());
-                app.ui(ui);
-            },
-            WorkbenchApp::new(options),
-        )
+    support::harness(support::no_solver())
 }
 
 /// Steps frames until the study file's run has finished.

@@ -23,6 +23,7 @@ use crate::path_prompt::PathPrompt;
 use crate::persist::Persisted;
 use crate::plot_tab::PlotTab;
 use crate::run::RunMode;
+use crate::run_timer::RunTimer;
 use crate::runner::{FieldTask, Runner};
 use crate::scenes;
 use crate::study::{Study, StudySetup};
@@ -70,6 +71,9 @@ pub struct Options {
     /// Native file dialogs are tried (false: Save and Open ask for a path
     /// at once, as where no dialog service exists).
     pub file_dialogs: bool,
+    /// Time the command line's run (`--time-run`): when it ends, print its
+    /// wall time and frame times (stderr) and close the window.
+    pub time_run: bool,
 }
 
 /// A run the app starts by itself (`cdca-workbench SCENE --run relax|grow`,
@@ -99,6 +103,7 @@ impl Default for Options {
             view: ViewSettings::default(),
             start_run: None,
             file_dialogs: true,
+            time_run: false,
         }
     }
 }
@@ -166,6 +171,8 @@ pub struct WorkbenchApp {
     /// freed the slot.
     pub(crate) queued: Option<Command>,
     pub(crate) frame_stats: FrameStats,
+    /// The command line's run, timed (`--time-run`).
+    run_timer: RunTimer,
     frame_start: Option<Instant>,
     /// Time the frame's tasks took, s.
     frame_solver_seconds: f64,
@@ -215,6 +222,7 @@ impl WorkbenchApp {
             drag_followed: false,
             queued: None,
             frame_stats: FrameStats::default(),
+            run_timer: RunTimer::default(),
             frame_start: None,
             frame_solver_seconds: 0.0,
             screenshot: Arc::default(),
@@ -224,7 +232,7 @@ impl WorkbenchApp {
 
     /// The native and web entry: restores the last scene and view settings.
     pub fn from_creation_context(cc: &eframe::CreationContext<'_>) -> Self {
-        Self::launch(cc, None, None)
+        Self::launch(cc, None, None, false)
     }
 
     /// The entry from the command line: opens `scene` (source, scene)
@@ -234,6 +242,7 @@ impl WorkbenchApp {
         cc: &eframe::CreationContext<'_>,
         scene: Option<(String, SceneFile)>,
         run: Option<StartRun>,
+        time_run: bool,
     ) -> Self {
         cc.egui_ctx.set_fonts(fonts());
         let saved = Persisted::load(cc.storage);
@@ -256,6 +265,7 @@ impl WorkbenchApp {
             scene_source: source,
             view: saved.view,
             start_run: run,
+            time_run,
             ..Options::default()
         });
         app.layout = Layout::new(saved.layout);
@@ -571,7 +581,17 @@ impl WorkbenchApp {
                 .map(|w| w.command)
                 .or_else(|| self.queued.take())
         {
+            if self.options.time_run {
+                self.run_timer.start();
+            }
             self.run_cmd(ctx, cmd);
+        }
+        if self.run_timer.is_timing() && self.running_job().is_none() && self.queued.is_none() {
+            let v = self.runner.view();
+            if let Some(line) = self.run_timer.finish(v.history.len(), v.load_factor) {
+                eprintln!("{line}");
+                ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            }
         }
         self.refresh_tip_curve();
         let busy = self.running_job().is_some()
@@ -923,6 +943,8 @@ impl WorkbenchApp {
                 self.frame_solver_seconds,
                 f64::from(dt),
             );
+            self.run_timer
+                .record(start.elapsed().as_secs_f64(), f64::from(dt));
         }
     }
 

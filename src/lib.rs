@@ -25,6 +25,7 @@ mod persist;
 mod plot_tab;
 mod replay;
 mod run;
+mod run_timer;
 mod runner;
 pub mod scenes;
 mod solution;

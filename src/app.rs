@@ -74,6 +74,9 @@ pub struct Options {
     /// Time the command line's run (`--time-run`): when it ends, print its
     /// wall time and frame times (stderr) and close the window.
     pub time_run: bool,
+    /// Natively, growth runs on a thread of its own (false: in frame
+    /// slices, as in the browser; for tests of the sliced run).
+    pub growth_thread: bool,
 }
 
 /// A run the app starts by itself (`cdca-workbench SCENE --run relax|grow`,
@@ -104,6 +107,7 @@ impl Default for Options {
             start_run: None,
             file_dialogs: true,
             time_run: false,
+            growth_thread: true,
         }
     }
 }
@@ -187,6 +191,7 @@ impl WorkbenchApp {
         let plot_tab = PlotTab::fitting(&scene);
         let opened_scene = scene.clone();
         let mut runner = Runner::default();
+        runner.set_growth_thread(options.growth_thread);
         let message = runner.invalidate(&scene).err().map(Message::Error);
         Self {
             scene_source: options.scene_source.clone(),
@@ -594,14 +599,20 @@ impl WorkbenchApp {
             }
         }
         self.refresh_tip_curve();
-        let busy = self.running_job().is_some()
+        // natively the growth thread repaints the UI when it has something
+        // to show (and the field comes with it)
+        let on_thread = self.runner.grows_on_thread(ctx);
+        let busy = (self.running_job().is_some() && !on_thread)
             || self.queued.is_some()
             || self.waiting.is_some()
-            || self
-                .field_key()
-                .is_some_and(|k| !self.runner.field().is_current(&k));
+            || (!on_thread
+                && self
+                    .field_key()
+                    .is_some_and(|k| !self.runner.field().is_current(&k)));
         if busy || !self.commands.is_empty() {
             ctx.request_repaint();
+        } else if on_thread {
+            ctx.request_repaint_after(Duration::from_millis(100));
         }
     }
 
@@ -612,6 +623,9 @@ impl WorkbenchApp {
     /// [`Job`]); after that, a growth step's field at λ_cr at once, before
     /// its tips move on.
     fn run_tasks(&mut self) {
+        if let Some(e) = self.runner.take_error() {
+            self.message = Some(Message::Error(e));
+        }
         let start = Instant::now();
         let rest = Duration::from_secs_f64(self.frame_stats.last_besides_solver());
         let deadline = start + solver_budget(rest);
@@ -680,21 +694,24 @@ impl WorkbenchApp {
         let running = self.runner.is_running() || self.dragging;
         let s = &self.settings;
         let wanted = s.field != FieldKind::None || s.deformed;
-        let sim = self.runner.simulation()?;
-        let scene = sim.scene();
+        let scene = self.runner.scene()?;
         let k = if running {
             1
         } else {
             s.samples_per_cell.clamp(1, 4)
         };
-        (wanted && self.runner.view().has_field()).then(|| FieldKey {
+        let key = wanted.then(|| FieldKey {
             version,
             cols: scene.mesh.nx * k,
             rows: scene.mesh.ny * k,
             width: scene.specimen.width,
             height: scene.specimen.height,
             with_displacement: s.deformed || s.field == FieldKind::Displacement,
-        })
+        });
+        // natively the growth thread samples the field of each step's load
+        // whatever the view shows now
+        self.runner.want_field(key);
+        key.filter(|_| self.runner.view().has_field())
     }
 
     /// The inspected tip's σ_θθ / τ_rθ curve, for the current solution.
@@ -723,10 +740,7 @@ impl WorkbenchApp {
                 {
                     return;
                 }
-                let curve = self
-                    .runner
-                    .simulation()
-                    .and_then(|s| s.criterion_curve(tip));
+                let curve = self.runner.criterion_curve(tip);
                 self.tip_curve = Some(TipCurve {
                     tip,
                     version,

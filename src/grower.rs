@@ -39,12 +39,15 @@ const _: () = {
 /// as a frame slice was, so that a pause waits at most about this long.
 const PIECE: Duration = Duration::from_millis(12);
 
-/// Least time between two updates without a step's event, s: the UI
-/// repaints when an update comes (20 Hz for the residual and progress;
-/// every step's events at once), not continuously, so that painting takes
-/// little from the solver on a 2-core machine (painting in software, as
-/// under Xvfb, took 40 ms a frame at 1400 × 900).
-const UPDATE_INTERVAL: Duration = Duration::from_millis(50);
+/// Least time between two updates without a step's event, and the
+/// longest the UI waits to show one, s: the UI repaints when an update
+/// comes, at most this often (10 Hz for the residual and progress; each
+/// step's field is shown for a frame), not continuously, so that painting
+/// takes little from the solver on a 2-core machine. (Painted in software,
+/// as under Xvfb, a frame of the workbench took about 30 ms of CPU: at
+/// 25 frames a second the growth thread had 40% of a core, and Run growth
+/// took 2.7 times as long as `cdca grow`.)
+const UPDATE_INTERVAL: Duration = Duration::from_millis(100);
 
 /// What the UI shows after a piece of the run.
 pub struct Update {
@@ -245,7 +248,7 @@ impl Thread {
             curves,
         });
         if let Some(ctx) = &self.waker {
-            ctx.request_repaint();
+            ctx.request_repaint_after(UPDATE_INTERVAL);
         }
     }
 

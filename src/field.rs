@@ -199,6 +199,7 @@ impl FieldSampler {
 
     /// The field `key` of `sim`'s current iterate, sampled whole (on the
     /// growth thread, which owns the simulation).
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn sampled(sim: &Simulation, key: FieldKey) -> FieldSamples {
         let mut s = Self::default();
         let far = Instant::now() + web_time::Duration::from_secs(3600);
@@ -213,6 +214,7 @@ impl FieldSampler {
 
     /// Shows `field`, sampled elsewhere (the growth thread); a field being
     /// built is dropped.
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn show(&mut self, field: FieldSamples) {
         self.current = Some(field);
         self.building = None;

@@ -99,6 +99,7 @@ pub struct Runner {
     /// extended.
     show_now: bool,
     /// The field the canvas wants ([`want_field`](Self::want_field)).
+    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
     field_wanted: Option<FieldKey>,
     /// Natively, the growth thread while it has the simulation (`sim` is
     /// then `None` and `run` a copy of the run it advances).

@@ -54,8 +54,9 @@ pub fn solver_budget(rest: Duration) -> Duration {
         .clamp(MIN_SOLVER_BUDGET, FRAME_BUDGET)
 }
 
-/// How the app starts.
+/// How the app starts. (Independent flags, so bools.)
 #[derive(Clone, Debug)]
+#[allow(clippy::struct_excessive_bools)]
 pub struct Options {
     /// Solve the first scene in the first frame.
     pub solve_on_start: bool,

@@ -202,7 +202,7 @@ impl FieldSampler {
     #[cfg(not(target_arch = "wasm32"))]
     pub fn sampled(sim: &Simulation, key: FieldKey) -> FieldSamples {
         let mut s = Self::default();
-        let far = Instant::now() + web_time::Duration::from_secs(3600);
+        let far = Instant::now() + web_time::Duration::from_hours(1);
         loop {
             if s.advance(sim, key, far) == Progress::Finished
                 && let Some(field) = s.current.take()

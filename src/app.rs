@@ -23,6 +23,7 @@ use crate::path_prompt::PathPrompt;
 use crate::persist::Persisted;
 use crate::plot_tab::PlotTab;
 use crate::run::RunMode;
+use crate::run_timer::RunTimer;
 use crate::runner::{FieldTask, Runner};
 use crate::scenes;
 use crate::study::{Study, StudySetup};
@@ -53,8 +54,9 @@ pub fn solver_budget(rest: Duration) -> Duration {
         .clamp(MIN_SOLVER_BUDGET, FRAME_BUDGET)
 }
 
-/// How the app starts.
+/// How the app starts. (Independent flags, so bools.)
 #[derive(Clone, Debug)]
+#[allow(clippy::struct_excessive_bools)]
 pub struct Options {
     /// Solve the first scene in the first frame.
     pub solve_on_start: bool,
@@ -70,6 +72,12 @@ pub struct Options {
     /// Native file dialogs are tried (false: Save and Open ask for a path
     /// at once, as where no dialog service exists).
     pub file_dialogs: bool,
+    /// Time the command line's run (`--time-run`): when it ends, print its
+    /// wall time and frame times (stderr) and close the window.
+    pub time_run: bool,
+    /// Natively, growth runs on a thread of its own (false: in frame
+    /// slices, as in the browser; for tests of the sliced run).
+    pub growth_thread: bool,
 }
 
 /// A run the app starts by itself (`cdca-workbench SCENE --run relax|grow`,
@@ -99,6 +107,8 @@ impl Default for Options {
             view: ViewSettings::default(),
             start_run: None,
             file_dialogs: true,
+            time_run: false,
+            growth_thread: true,
         }
     }
 }
@@ -172,6 +182,8 @@ pub struct WorkbenchApp {
     /// freed the slot.
     pub(crate) queued: Option<Command>,
     pub(crate) frame_stats: FrameStats,
+    /// The command line's run, timed (`--time-run`).
+    run_timer: RunTimer,
     frame_start: Option<Instant>,
     /// Time the frame's tasks took, s.
     frame_solver_seconds: f64,
@@ -186,6 +198,7 @@ impl WorkbenchApp {
         let plot_tab = PlotTab::fitting(&scene);
         let opened_scene = scene.clone();
         let mut runner = Runner::default();
+        runner.set_growth_thread(options.growth_thread);
         let message = runner.invalidate(&scene).err().map(Message::Error);
         Self {
             scene_source: options.scene_source.clone(),
@@ -224,6 +237,7 @@ impl WorkbenchApp {
             drag_followed: false,
             queued: None,
             frame_stats: FrameStats::default(),
+            run_timer: RunTimer::default(),
             frame_start: None,
             frame_solver_seconds: 0.0,
             screenshot: Arc::default(),
@@ -233,7 +247,7 @@ impl WorkbenchApp {
 
     /// The native and web entry: restores the last scene and view settings.
     pub fn from_creation_context(cc: &eframe::CreationContext<'_>) -> Self {
-        Self::launch(cc, None, None)
+        Self::launch(cc, None, None, false)
     }
 
     /// The entry from the command line: opens `scene` (source, scene)
@@ -243,6 +257,7 @@ impl WorkbenchApp {
         cc: &eframe::CreationContext<'_>,
         scene: Option<(String, SceneFile)>,
         run: Option<StartRun>,
+        time_run: bool,
     ) -> Self {
         cc.egui_ctx.set_fonts(fonts());
         let saved = Persisted::load(cc.storage);
@@ -265,6 +280,7 @@ impl WorkbenchApp {
             scene_source: source,
             view: saved.view,
             start_run: run,
+            time_run,
             ..Options::default()
         });
         app.layout = Layout::new(saved.layout);
@@ -586,17 +602,33 @@ impl WorkbenchApp {
                 .map(|w| w.command)
                 .or_else(|| self.queued.take())
         {
+            if self.options.time_run {
+                self.run_timer.start();
+            }
             self.run_cmd(ctx, cmd);
         }
+        if self.run_timer.is_timing() && self.running_job().is_none() && self.queued.is_none() {
+            let v = self.runner.view();
+            if let Some(line) = self.run_timer.finish(v.history.len(), v.load_factor) {
+                eprintln!("{line}");
+                ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            }
+        }
         self.refresh_tip_curve();
-        let busy = self.running_job().is_some()
+        // natively the growth thread repaints the UI when it has something
+        // to show (and the field comes with it)
+        let on_thread = self.runner.grows_on_thread(ctx);
+        let busy = (self.running_job().is_some() && !on_thread)
             || self.queued.is_some()
             || self.waiting.is_some()
-            || self
-                .field_key()
-                .is_some_and(|k| !self.runner.field().is_current(&k));
+            || (!on_thread
+                && self
+                    .field_key()
+                    .is_some_and(|k| !self.runner.field().is_current(&k)));
         if busy || !self.commands.is_empty() {
             ctx.request_repaint();
+        } else if on_thread {
+            ctx.request_repaint_after(Duration::from_millis(100));
         }
     }
 
@@ -607,6 +639,9 @@ impl WorkbenchApp {
     /// [`Job`]); after that, a growth step's field at λ_cr at once, before
     /// its tips move on.
     fn run_tasks(&mut self) {
+        if let Some(e) = self.runner.take_error() {
+            self.message = Some(Message::Error(e));
+        }
         let start = Instant::now();
         let rest = Duration::from_secs_f64(self.frame_stats.last_besides_solver());
         let deadline = start + solver_budget(rest);
@@ -675,21 +710,24 @@ impl WorkbenchApp {
         let running = self.runner.is_running() || self.dragging;
         let s = &self.settings;
         let wanted = s.field != FieldKind::None || s.deformed;
-        let sim = self.runner.simulation()?;
-        let scene = sim.scene();
+        let scene = self.runner.scene()?;
         let k = if running {
             1
         } else {
             s.samples_per_cell.clamp(1, 4)
         };
-        (wanted && self.runner.view().has_field()).then(|| FieldKey {
+        let key = wanted.then(|| FieldKey {
             version,
             cols: scene.mesh.nx * k,
             rows: scene.mesh.ny * k,
             width: scene.specimen.width,
             height: scene.specimen.height,
             with_displacement: s.deformed || s.field == FieldKind::Displacement,
-        })
+        });
+        // natively the growth thread samples the field of each step's load
+        // whatever the view shows now
+        self.runner.want_field(key);
+        key.filter(|_| self.runner.view().has_field())
     }
 
     /// The inspected tip's σ_θθ / τ_rθ curve, for the current solution.
@@ -718,10 +756,7 @@ impl WorkbenchApp {
                 {
                     return;
                 }
-                let curve = self
-                    .runner
-                    .simulation()
-                    .and_then(|s| s.criterion_curve(tip));
+                let curve = self.runner.criterion_curve(tip);
                 self.tip_curve = Some(TipCurve {
                     tip,
                     version,
@@ -939,6 +974,8 @@ impl WorkbenchApp {
                 self.frame_solver_seconds,
                 f64::from(dt),
             );
+            self.run_timer
+                .record(start.elapsed().as_secs_f64(), f64::from(dt));
         }
     }
 

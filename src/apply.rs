@@ -17,6 +17,11 @@ use crate::{export, io, scenes};
 
 impl WorkbenchApp {
     pub(crate) fn run_cmd(&mut self, ctx: &egui::Context, cmd: Command) {
+        if touches_simulation(&cmd) {
+            // natively the growth thread gives it back (the run goes on
+            // at the next frame unless the command changes it)
+            self.runner.park();
+        }
         // one job at a time: another job asked for while one runs waits for
         // the user to cancel the running one (a job asked for again
         // restarts or goes on, as before)
@@ -759,4 +764,31 @@ fn file_stem(scene: &SceneFile) -> String {
     } else {
         stem
     }
+}
+
+/// Whether `cmd` may read or change the simulation (not only what is
+/// shown of it): the growth thread then gives it back first.
+fn touches_simulation(cmd: &Command) -> bool {
+    !matches!(
+        cmd,
+        Command::Replay(_)
+            | Command::SelectTip(_)
+            | Command::DismissMessage
+            | Command::CancelTypedPath
+            | Command::DropWaiting
+            | Command::SetAccelerateGrowth(_)
+            | Command::CompareSolvers { .. }
+            | Command::CancelRace
+            | Command::RunStudy(_)
+            | Command::CancelStudy
+            | Command::Export(
+                Export::CrackPaths
+                    | Export::History
+                    | Export::CanvasPng
+                    | Export::Plot { .. }
+                    | Export::Race
+                    | Export::Study
+                    | Export::StudyTable
+            )
+    )
 }

@@ -10,6 +10,10 @@ use web_time::Instant;
 
 use crate::task::Progress;
 
+/// While a run goes on, the canvas's field follows the solver at most this
+/// often (sampled coarsely, one sample per element), s.
+pub const LIVE_FIELD_INTERVAL: f64 = 0.15;
+
 /// Which scalar the colour map shows.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum FieldKind {
@@ -190,6 +194,29 @@ impl FieldSampler {
 
     pub fn clear(&mut self) {
         self.current = None;
+        self.building = None;
+    }
+
+    /// The field `key` of `sim`'s current iterate, sampled whole (on the
+    /// growth thread, which owns the simulation).
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn sampled(sim: &Simulation, key: FieldKey) -> FieldSamples {
+        let mut s = Self::default();
+        let far = Instant::now() + web_time::Duration::from_hours(1);
+        loop {
+            if s.advance(sim, key, far) == Progress::Finished
+                && let Some(field) = s.current.take()
+            {
+                return field;
+            }
+        }
+    }
+
+    /// Shows `field`, sampled elsewhere (the growth thread); a field being
+    /// built is dropped.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn show(&mut self, field: FieldSamples) {
+        self.current = Some(field);
         self.building = None;
     }
 

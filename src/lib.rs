@@ -14,6 +14,8 @@ mod field;
 mod figure;
 mod figures;
 mod frame_stats;
+#[cfg(not(target_arch = "wasm32"))]
+mod grower;
 mod io;
 pub mod job;
 pub mod layout;
@@ -25,6 +27,7 @@ mod persist;
 mod plot_tab;
 mod replay;
 mod run;
+mod run_timer;
 mod runner;
 pub mod scenes;
 mod solution;

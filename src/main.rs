@@ -6,7 +6,7 @@
 #[cfg(not(target_arch = "wasm32"))]
 const USAGE: &str = "usage: cdca-workbench [SCENE.json | --link LINK] [--run relax|grow|compare]
                      [--study PATH FROM TO COUNT] [--study-file STUDY.json]
-                     [--size WIDTHxHEIGHT]
+                     [--size WIDTHxHEIGHT] [--time-run]
 
 Opens SCENE.json, or the scene a shared link carries (a web address or its
 #scene=… fragment, from File > Copy link to this scene; default: the last
@@ -17,7 +17,8 @@ PATH (e.g. cracks.0.friction) over COUNT values from FROM to TO, in the
 Study tab's units (MPa, mm, °, or none); with --study-file, the first
 steps of every point of a study file (docs/studies.md) in the Study tab.
 --size sets the window's size in points (default 1400x900; e.g. 1024x640
-for a projector, 390x844 for a phone's).";
+for a projector, 390x844 for a phone's). --time-run: when the --run
+ends, print its wall time and frame times and close the window.";
 
 /// What the command line asks for.
 #[cfg(not(target_arch = "wasm32"))]
@@ -27,6 +28,8 @@ struct Launch {
     run: Option<cdca_workbench::StartRun>,
     /// The window's inner size, points.
     size: [f32; 2],
+    /// `--time-run`.
+    time_run: bool,
 }
 
 /// Parses the command line (without the program name). `Ok(None)`: help
@@ -38,6 +41,7 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Option<Launch>, 
         scene: None,
         run: None,
         size: [1400.0, 900.0],
+        time_run: false,
     };
     while let Some(arg) = args.next() {
         match arg.as_str() {
@@ -53,6 +57,7 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Option<Launch>, 
                     }
                 });
             }
+            "--time-run" => launch.time_run = true,
             "--link" => {
                 let link = args.next().ok_or("--link needs a link (…#scene=…)")?;
                 let scene = match cdca_workbench::link::from_link(&link) {
@@ -163,6 +168,7 @@ fn main() -> eframe::Result {
                 cc,
                 launch.scene,
                 launch.run,
+                launch.time_run,
             )))
         }),
     )

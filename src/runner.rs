@@ -5,13 +5,15 @@
 
 use cdca::report::OtherSolutionReport;
 use cdca::scene::{ContactUpdate, SceneFile, SolverKind};
-use cdca::{Scene, Simulation, SolveError};
+use cdca::{CriterionCurve, Scene, Simulation, SolveError};
 use web_time::Instant;
 
-use crate::field::{FieldKey, FieldSampler};
+use crate::field::{FieldKey, FieldSampler, LIVE_FIELD_INTERVAL};
+#[cfg(not(target_arch = "wasm32"))]
+use crate::grower::{Grower, Update};
 use crate::pacer::Pacer;
 use crate::replay::Replay;
-use crate::run::{Run, RunMode};
+use crate::run::{Run, RunMode, Slice};
 use crate::solution::{SecondStart, SolutionView};
 use crate::task::{Progress, Task};
 
@@ -22,10 +24,6 @@ use crate::task::{Progress, Task};
 /// measured with `cdca solve`); the contact tolerance (1e-8) is not
 /// reachable with a looser linear solve.
 pub const GROWTH_TOLERANCE: f64 = 1e-8;
-
-/// While a run goes on, the canvas's field follows the solver at most this
-/// often (sampled coarsely, one sample per element), s.
-pub const LIVE_FIELD_INTERVAL: f64 = 0.15;
 
 /// The solver settings used in growth: iterative solvers at
 /// [`GROWTH_TOLERANCE`]; with `accelerate`, the plain automaton replaced by
@@ -99,6 +97,25 @@ pub struct Runner {
     /// (λ_cr, or the load increment's λ), shown before its tips are
     /// extended.
     show_now: bool,
+    /// The field the canvas wants ([`want_field`](Self::want_field)).
+    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
+    field_wanted: Option<FieldKey>,
+    /// Natively, the growth thread while it has the simulation (`sim` is
+    /// then `None` and `run` a copy of the run it advances).
+    #[cfg(not(target_arch = "wasm32"))]
+    grower: Option<Grower>,
+    /// Natively, growth runs on a thread (`Grower`).
+    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
+    growth_thread: bool,
+    /// Repaints the UI when the growth thread has an update.
+    #[cfg(not(target_arch = "wasm32"))]
+    waker: Option<egui::Context>,
+    /// Each tip's criterion curve, from the growth thread's last solved
+    /// update (the inspector's curve while the thread has the simulation).
+    curves: Vec<Option<CriterionCurve>>,
+    /// The error of a run that ended on the growth thread while the UI
+    /// took the simulation back, shown at the next frame.
+    ended_error: Option<String>,
 }
 
 impl Default for Runner {
@@ -125,6 +142,14 @@ impl Default for Runner {
             field_version: 0,
             field_moved_at: None,
             show_now: false,
+            field_wanted: None,
+            #[cfg(not(target_arch = "wasm32"))]
+            grower: None,
+            growth_thread: true,
+            #[cfg(not(target_arch = "wasm32"))]
+            waker: None,
+            curves: Vec::new(),
+            ended_error: None,
         }
     }
 }
@@ -176,8 +201,51 @@ pub fn interactive_mesh(scene: &SceneFile) -> Result<(), String> {
 impl Runner {
     // --- what the UI reads ----------------------------------------------
 
+    /// The simulation, unless the growth thread has it (see
+    /// [`park`](Self::park)).
     pub fn simulation(&self) -> Option<&Simulation> {
         self.sim.as_ref()
+    }
+
+    /// The scene simulated (the growth thread's while it has the
+    /// simulation).
+    pub fn scene(&self) -> Option<&Scene> {
+        #[cfg(not(target_arch = "wasm32"))]
+        if let Some(g) = &self.grower {
+            return Some(g.scene());
+        }
+        self.sim.as_ref().map(Simulation::scene)
+    }
+
+    /// σ_θθ and τ_rθ around tip `tip` of the state shown.
+    pub fn criterion_curve(&self, tip: usize) -> Option<CriterionCurve> {
+        match &self.sim {
+            Some(sim) => sim.criterion_curve(tip),
+            None => self.curves.get(tip).cloned().flatten(),
+        }
+    }
+
+    /// Natively, whether growth runs on a thread of its own (default) or
+    /// in frame slices as in the browser.
+    pub fn set_growth_thread(&mut self, on: bool) {
+        self.growth_thread = on;
+    }
+
+    /// The field the canvas wants whenever the state has one (its
+    /// version aside): natively the growth thread samples it at each
+    /// step's load.
+    pub fn want_field(&mut self, key: Option<FieldKey>) {
+        self.field_wanted = key;
+        #[cfg(not(target_arch = "wasm32"))]
+        if let Some(g) = &self.grower {
+            g.want_field(key);
+        }
+    }
+
+    /// The error of a run that ended while the UI took the simulation
+    /// back from the growth thread, once.
+    pub fn take_error(&mut self) -> Option<String> {
+        self.ended_error.take()
     }
 
     /// What the UI shows of the simulation.
@@ -256,6 +324,10 @@ impl Runner {
     /// The solver growth uses (or will use) on this simulation, or on a
     /// simulation of `scene` when none is built yet.
     pub fn growth_solver_kind(&self, scene: &SceneFile) -> SolverKind {
+        #[cfg(not(target_arch = "wasm32"))]
+        if let Some(g) = &self.grower {
+            return g.scene().solver.kind;
+        }
         match &self.sim {
             Some(sim) if self.growth_ready || !sim.history().is_empty() => sim.scene().solver.kind,
             Some(sim) => growth_solver(&sim.scene().solver, self.accelerate_growth).kind,
@@ -269,6 +341,7 @@ impl Runner {
     /// (cheap; `Scene::try_from`); the discretisation is built when solver
     /// work is asked for.
     pub fn invalidate(&mut self, scene: &SceneFile) -> Result<(), String> {
+        self.park();
         self.drop_second_start();
         if let Some(mut sim) = self.sim.take() {
             // kept for its discretisation only: its factor is freed now
@@ -311,6 +384,7 @@ impl Runner {
     /// the field keep showing the last solved one. An invalid scene waits
     /// for the release, which says why.
     pub fn edit_during_drag(&mut self, scene: &SceneFile) {
+        self.park();
         if self.second_start.is_some() {
             // the check of the solve before the drag no longer applies
             self.drop_second_start();
@@ -327,6 +401,7 @@ impl Runner {
     /// check from bonded faces, and replaces the view and the field when
     /// it ends. Returns whether a solve started.
     pub fn follow_drag(&mut self) -> Result<bool, String> {
+        self.park();
         if !self.stale || self.run.is_some() || self.field.progress().is_some() {
             return Ok(false);
         }
@@ -357,6 +432,7 @@ impl Runner {
     /// (the same fresh start), and its check from bonded faces runs when
     /// it has ended.
     pub fn check_after_drag(&mut self) {
+        self.park();
         self.check_second_start = true;
         if !self.is_previewing() && self.start_second_start() {
             // the run goes on for the check alone
@@ -378,6 +454,7 @@ impl Runner {
 
     /// Builds a simulation of `scene` (checked; nothing solved yet).
     pub fn rebuild(&mut self, scene: &SceneFile) -> Result<(), String> {
+        self.park();
         self.invalidate(scene)?;
         let valid = self.checked()?.clone();
         let old = self.spare.take();
@@ -408,6 +485,7 @@ impl Runner {
     /// on the same scene ([`fresh_start`](Self::fresh_start)), so that its
     /// contact states and K do not depend on what ran before.
     pub fn solve(&mut self) -> Result<(), String> {
+        self.park();
         self.fresh_start()?;
         self.drop_second_start();
         self.check_second_start = true;
@@ -466,6 +544,7 @@ impl Runner {
 
     /// One sweep of the current relaxation (starting one if needed).
     pub fn step(&mut self) -> Result<(), String> {
+        self.park();
         self.drop_second_start();
         self.run = None;
         self.direct_solve = None;
@@ -487,6 +566,7 @@ impl Runner {
     /// Relaxes until converged, animated: the current relaxation goes on
     /// (one is started if none was).
     pub fn relax(&mut self) {
+        self.park();
         self.start_relaxation();
         if self.sim.is_some() {
             self.run = Some(Run::Relax);
@@ -509,6 +589,7 @@ impl Runner {
     /// load carries its friction history into the first, lower, load
     /// increment, where the contact iteration then fails to settle).
     pub fn start_growth(&mut self, one: bool) -> Result<(), String> {
+        self.park();
         self.drop_second_start();
         let Some(sim) = self.sim.as_ref() else {
             return Ok(());
@@ -538,6 +619,7 @@ impl Runner {
     /// Stops the run in progress where it is (it can go on later; a direct
     /// solve starts again at the next Solve).
     pub fn pause(&mut self) {
+        self.park();
         self.drop_second_start();
         self.run = None;
         self.direct_solve = None;
@@ -546,6 +628,7 @@ impl Runner {
     /// Sweeps per frame while relaxing or growing (None: as many as the
     /// frame budget allows).
     pub fn set_pace(&mut self, pace: Option<usize>) {
+        self.park();
         self.pacer.set_fixed(pace);
     }
 
@@ -610,6 +693,11 @@ impl<'a> FieldTask<'a> {
 impl Task for FieldTask<'_> {
     fn advance(&mut self, deadline: Instant) -> Result<Progress, String> {
         let r = &mut *self.runner;
+        #[cfg(not(target_arch = "wasm32"))]
+        if r.grower.is_some() {
+            // the growth thread samples it (`want_field`)
+            return Ok(Progress::Finished);
+        }
         Ok(match (&r.sim, self.key) {
             // (a dragged scene's simulation is sampled once solved)
             (Some(sim), Some(key)) if r.view.has_field() && !r.is_previewing() => {
@@ -691,6 +779,10 @@ impl Task for Runner {
         if self.second_start.is_some() {
             return Ok(self.advance_second_start(deadline));
         }
+        #[cfg(not(target_arch = "wasm32"))]
+        if let Some(progress) = self.advance_thread() {
+            return progress;
+        }
         let (Some(sim), Some(run)) = (self.sim.as_mut(), self.run.as_mut()) else {
             self.run = None;
             return Ok(Progress::Finished);
@@ -700,9 +792,23 @@ impl Task for Runner {
         if let Some(t) = self.direct_solve.as_mut() {
             *t += start.elapsed().as_secs_f64();
         }
+        self.after_slice(result)
+    }
+}
+
+impl Runner {
+    /// After a slice of the run (on the UI's thread, or the last piece of
+    /// the growth thread's): the view refreshed, the replay's step
+    /// recorded, and the end of the run, or its error, dealt with.
+    fn after_slice(&mut self, result: Result<Slice, SolveError>) -> Result<Progress, String> {
+        let (Some(sim), Some(run)) = (self.sim.as_ref(), self.run.as_ref()) else {
+            self.run = None;
+            return Ok(Progress::Finished);
+        };
         let final_solve = run.in_final_solve();
         let drag_solve = *run == Run::DragSolve;
         let elements = sim.scene().mesh.nx * sim.scene().mesh.ny;
+        let free_piece = sim.free_piece();
         if matches!(run, Run::Grow(_)) {
             // a later Relax starts its own relaxation
             self.relaxation_started = false;
@@ -738,10 +844,8 @@ impl Task for Runner {
                 }
                 Ok(slice.progress)
             }
-            Err(SolveError::NotPositiveDefinite { .. })
-                if final_solve || sim.free_piece().is_some() =>
-            {
-                let piece = sim.free_piece();
+            Err(SolveError::NotPositiveDefinite { .. }) if final_solve || free_piece.is_some() => {
+                let piece = free_piece;
                 self.refresh(false, None);
                 self.view.mark_split();
                 self.view.free_piece = piece;
@@ -755,6 +859,124 @@ impl Task for Runner {
                 self.direct_solve = None;
                 Err(e.to_string())
             }
+        }
+    }
+}
+
+/// Natively, growth on a thread of its own ([`Grower`]).
+#[cfg(not(target_arch = "wasm32"))]
+impl Runner {
+    /// Growth goes to the thread: a growth run without a fixed pace (a
+    /// pace set by the user is watched a call per frame, as in the
+    /// browser).
+    fn wants_thread(&self) -> bool {
+        self.growth_thread
+            && matches!(self.run, Some(Run::Grow(_)))
+            && self.sim.is_some()
+            && self.pacer.fixed().is_none()
+    }
+
+    /// This frame's part of a growth run on the thread (`None`: no
+    /// growth for the thread): starts the thread, or shows its updates in
+    /// order (a frame ends with an update carrying a step's field, so
+    /// that every step's field is shown), and once it has ended, takes
+    /// the simulation back and ends the run as a slice would.
+    fn advance_thread(&mut self) -> Option<Result<Progress, String>> {
+        if self.grower.is_none() {
+            if !self.wants_thread() {
+                return None;
+            }
+            let (Some(sim), Some(run)) = (self.sim.take(), self.run.clone()) else {
+                return None;
+            };
+            // a later Relax starts its own relaxation
+            self.relaxation_started = false;
+            self.grower = Some(Grower::start(
+                sim,
+                run,
+                self.pacer.clone(),
+                self.view.clone(),
+                self.field_wanted,
+                self.waker.clone(),
+            ));
+            return Some(Ok(Progress::Working));
+        }
+        loop {
+            match self.grower.as_ref()?.next_update() {
+                Ok(Some(u)) => {
+                    let shown = u.at_step_load && u.field.is_some();
+                    self.show_update(u);
+                    if shown {
+                        return Some(Ok(Progress::Working));
+                    }
+                }
+                Ok(None) => return Some(Ok(Progress::Working)),
+                Err(()) => break,
+            }
+        }
+        Some(self.take_back().unwrap_or(Ok(Progress::Working)))
+    }
+
+    /// What the growth thread sent, shown as a slice's result is: the
+    /// view, the field and the curves; the replay records it.
+    fn show_update(&mut self, u: Update) {
+        self.view = u.view;
+        self.curves = u.curves;
+        if let Some(field) = u.field {
+            self.field.show(field);
+        }
+        self.replay
+            .record(&self.view, u.at_step_load, self.field.current());
+    }
+
+    /// Takes the simulation back from the growth thread: waits for its
+    /// piece under way (it stops when asked, or has ended), shows its
+    /// last updates, and puts the simulation, the run and the pacer back;
+    /// if the run had ended there, ends it as a slice would. `None`: no
+    /// thread, or it was stopped before the run's end.
+    fn take_back(&mut self) -> Option<Result<Progress, String>> {
+        let g = self.grower.take()?;
+        g.stop();
+        let (returned, updates) = g.join();
+        for u in updates {
+            self.show_update(u);
+        }
+        self.sim = Some(returned.sim);
+        self.run = Some(returned.run);
+        self.pacer = returned.pacer;
+        self.curves.clear();
+        returned.end.map(|end| self.after_slice(end))
+    }
+}
+
+impl Runner {
+    /// The growth thread has the simulation: the UI need not repaint but
+    /// when it sends an update (it repaints the UI through `waker`, the
+    /// app's context).
+    pub fn grows_on_thread(&mut self, waker: &egui::Context) -> bool {
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            if self.waker.is_none() {
+                self.waker = Some(waker.clone());
+            }
+            self.grower.is_some()
+        }
+        #[cfg(target_arch = "wasm32")]
+        {
+            let _ = waker;
+            false
+        }
+    }
+
+    /// Natively, takes the simulation back from the growth thread, if it
+    /// has it, for whatever comes next (an edit, Pause, Save, an export):
+    /// the run stands where the thread stopped and goes on at the next
+    /// frame unless changed. Its error, if it ended in one, is kept for
+    /// [`take_error`](Self::take_error).
+    pub fn park(&mut self) {
+        #[cfg(not(target_arch = "wasm32"))]
+        if let Some(Err(e)) = self.take_back() {
+            self.ended_error = Some(e);
         }
     }
 }

@@ -376,7 +376,7 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         }
         RunMode::Growing | RunMode::GrowingOne => {
             ui.horizontal(|ui| {
-                ui.spinner();
+                super::widgets::slow_spinner(ui);
                 ui.label(format!("Growing ({})…", solver_name(v.run.growth_solver)));
             });
             // under load control λ is the share of the ramp done; under

@@ -146,3 +146,39 @@ pub fn choice<T: PartialEq + Copy>(
         })
         .response
 }
+
+/// Frames a second of [`slow_spinner`].
+const SLOW_SPINNER_HZ: f32 = 10.0;
+
+/// A spinner that asks for a frame 10 times a second, not every frame as
+/// egui's does: natively a growth run works on its own thread, and a UI
+/// repainting continuously took most of a core from it where painting is
+/// done in software (Xvfb), for nothing the run shows.
+pub fn slow_spinner(ui: &mut Ui) -> Response {
+    let size = ui.style().spacing.interact_size.y;
+    let (rect, response) = ui.allocate_exact_size(egui::vec2(size, size), egui::Sense::hover());
+    response.widget_info(|| egui::WidgetInfo::new(egui::Role::ProgressIndicator));
+    if ui.is_rect_visible(rect) {
+        ui.ctx()
+            .request_repaint_after(std::time::Duration::from_secs_f32(1.0 / SLOW_SPINNER_HZ));
+        let time = ui.input(|i| i.time);
+        // the angle steps with the frames asked for
+        let time = (time * f64::from(SLOW_SPINNER_HZ)).floor() / f64::from(SLOW_SPINNER_HZ);
+        let start = time * std::f64::consts::TAU;
+        let end = start + 240f64.to_radians() * time.sin();
+        let radius = rect.height().min(rect.width()) * 0.5 - 2.0;
+        let n = 24;
+        let points: Vec<egui::Pos2> = (0..n)
+            .map(|i| {
+                let angle = egui::emath::lerp(start..=end, f64::from(i) / f64::from(n));
+                let (sin, cos) = angle.sin_cos();
+                rect.center() + radius * egui::vec2(cos as f32, sin as f32)
+            })
+            .collect();
+        ui.painter().add(egui::Shape::line(
+            points,
+            egui::Stroke::new(3.0, ui.visuals().strong_text_color()),
+        ));
+    }
+    response
+}

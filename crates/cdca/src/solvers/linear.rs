@@ -28,8 +28,10 @@ pub struct LinearInfo {
     pub history: Vec<f64>,
 }
 
-/// A resumable solver of the assembled-or-not operator.
-pub trait LinearSolver {
+/// A resumable solver of the assembled-or-not operator. `Send`, so that a
+/// [`Simulation`](crate::Simulation) can be moved to another thread (the
+/// workbench grows natively on a thread of its own).
+pub trait LinearSolver: Send {
     /// Name as in the scene's `solver.kind`.
     fn name(&self) -> &'static str;
 

@@ -360,17 +360,21 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
     match v.run.mode {
         RunMode::Paused | RunMode::SolvingDrag => {}
         RunMode::Relaxing => {
+            // the direct solver solves, in its own unit: it used to say
+            // "Relaxing… sweep 0" for its first second
+            let direct = view.solver == SolverKind::Direct;
             ui.horizontal(|ui| {
                 ui.spinner();
-                ui.label("Relaxing…");
+                ui.label(if direct { "Solving…" } else { "Relaxing…" });
             });
             if let Some(r) = view.relax {
                 // progress on a log scale from residual 1 to the tolerance
                 let goal = v.scene.solver.tolerance.max(1e-300).log10();
                 let done = (r.residual.max(1e-300).log10() / goal).clamp(0.0, 1.0) as f32;
                 ui.add(ProgressBar::new(done).text(format!(
-                    "sweep {}, residual {:.2e}",
-                    r.iterations, r.residual
+                    "{}, residual {:.2e}",
+                    iterations(view.solver, r.iterations),
+                    r.residual
                 )));
             }
         }

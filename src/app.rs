@@ -13,7 +13,7 @@ pub use crate::canvas::{CANVAS_LABEL, SECONDARY_COLOR, SECONDARY_KEY};
 use crate::canvas::{Canvas, CanvasInput, ViewSettings};
 use crate::command::Command;
 use crate::compare::{self, Race};
-use crate::edit::{Editor, UndoStack};
+use crate::edit::Editor;
 use crate::field::{FieldKey, FieldKind};
 use crate::frame_stats::FrameStats;
 use crate::job::{Job, Waiting};
@@ -29,6 +29,7 @@ use crate::scenes;
 use crate::study::{Study, StudySetup};
 use crate::study_file::{FileStudy, LoadedStudy, StudyFileSetup};
 use crate::task::{Progress, Task};
+use crate::undo::UndoStack;
 pub use crate::view::Message;
 use crate::view::{AppView, RunStatus, ViewState};
 
@@ -78,6 +79,9 @@ pub struct Options {
     /// Natively, growth runs on a thread of its own (false: in frame
     /// slices, as in the browser; for tests of the sliced run).
     pub growth_thread: bool,
+    /// The plot tab shown whatever runs (command line `--plot`, for
+    /// screenshots); the user can still pick another.
+    pub plot: Option<PlotTab>,
 }
 
 /// A run the app starts by itself (`cdca-workbench SCENE --run relax|grow`,
@@ -109,6 +113,7 @@ impl Default for Options {
             file_dialogs: true,
             time_run: false,
             growth_thread: true,
+            plot: None,
         }
     }
 }
@@ -195,7 +200,7 @@ pub struct WorkbenchApp {
 impl WorkbenchApp {
     pub fn new(options: Options) -> Self {
         let scene = options.scene.clone().unwrap_or_else(scenes::default_scene);
-        let plot_tab = PlotTab::fitting(&scene);
+        let plot_tab = options.plot.unwrap_or_else(|| PlotTab::fitting(&scene));
         let opened_scene = scene.clone();
         let mut runner = Runner::default();
         runner.set_growth_thread(options.growth_thread);
@@ -247,7 +252,7 @@ impl WorkbenchApp {
 
     /// The native and web entry: restores the last scene and view settings.
     pub fn from_creation_context(cc: &eframe::CreationContext<'_>) -> Self {
-        Self::launch(cc, None, None, false)
+        Self::launch(cc, None, None, false, None)
     }
 
     /// The entry from the command line: opens `scene` (source, scene)
@@ -258,6 +263,7 @@ impl WorkbenchApp {
         scene: Option<(String, SceneFile)>,
         run: Option<StartRun>,
         time_run: bool,
+        plot: Option<PlotTab>,
     ) -> Self {
         cc.egui_ctx.set_fonts(fonts());
         let saved = Persisted::load(cc.storage);
@@ -281,6 +287,7 @@ impl WorkbenchApp {
             view: saved.view,
             start_run: run,
             time_run,
+            plot,
             ..Options::default()
         });
         app.layout = Layout::new(saved.layout);
@@ -289,6 +296,11 @@ impl WorkbenchApp {
 
     // --- read access for tests and panels -------------------------------
 
+    /// Where the scene came from (the title's name): a file, a bundled
+    /// scene's title, a shared link.
+    pub fn scene_source(&self) -> &str {
+        &self.scene_source
+    }
     pub fn scene(&self) -> &SceneFile {
         &self.scene
     }
@@ -945,7 +957,7 @@ impl WorkbenchApp {
                 Some(snapshot) => CanvasInput {
                     scene: &self.scene,
                     solution: &snapshot.view,
-                    field: snapshot.field.as_ref(),
+                    field: snapshot.field.as_deref(),
                     settings: &self.settings,
                     selected_tip: None,
                 },

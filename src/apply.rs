@@ -48,7 +48,15 @@ impl WorkbenchApp {
                     return;
                 }
                 self.note_edited_crack(&scene);
-                self.undo.record(&self.scene, ongoing);
+                if ongoing {
+                    let (scene, source, opened) =
+                        (&self.scene, &self.scene_source, &self.opened_scene);
+                    let present = || crate::undo::Entry::new(scene, source, opened);
+                    self.undo.record(present, true);
+                } else {
+                    // the run on screen (if any) is kept: Undo brings it back
+                    self.record_replacing(true, false);
+                }
                 self.scene = *scene;
                 self.scene_changed(ongoing);
             }
@@ -93,18 +101,8 @@ impl WorkbenchApp {
             Command::UseTypedPath => self.use_typed_path(),
             Command::CancelTypedPath => self.path_prompt = None,
             Command::Export(what) => self.export(ctx, what),
-            Command::Undo => {
-                if let Some(s) = self.undo.undo(&self.scene) {
-                    self.scene = s;
-                    self.scene_changed(false);
-                }
-            }
-            Command::Redo => {
-                if let Some(s) = self.undo.redo(&self.scene) {
-                    self.scene = s;
-                    self.scene_changed(false);
-                }
-            }
+            Command::Undo => self.undo(),
+            Command::Redo => self.redo(),
             Command::Solve => {
                 if self.ensure_simulation() {
                     // after growth it solves the grown cracks, at the last load
@@ -114,7 +112,11 @@ impl WorkbenchApp {
                         .is_some_and(|s| !s.history().is_empty());
                     let steps = self.runner.view().steps_done;
                     match self.runner.solve() {
-                        Ok(()) if grown => {
+                        Ok(kept) if grown => {
+                            // Undo brings the run back as it ended
+                            let mut present = self.present(false, false);
+                            present.run = kept.map(Box::new);
+                            self.undo.record(|| present, false);
                             // a grown scene resumes at its last step's load
                             let lambda = self.runner.view().load_factor;
                             self.message = Some(Message::Info(format!(
@@ -123,7 +125,7 @@ impl WorkbenchApp {
                                  plots."
                             )));
                         }
-                        r => self.show_error(r),
+                        r => self.show_error(r.map(drop)),
                     }
                 }
             }
@@ -156,7 +158,11 @@ impl WorkbenchApp {
                     .checked()
                     .and_then(|base| Study::new(base, &setup.path, setup.values(), accelerate));
                 match study {
-                    Ok(study) => self.study = Some(study),
+                    Ok(study) => {
+                        // Undo brings back the finished study this replaces
+                        self.record_replacing(false, true);
+                        self.study = Some(study);
+                    }
                     Err(e) => {
                         self.message = Some(Message::Error(format!("The study cannot run: {e}")));
                     }
@@ -184,6 +190,12 @@ impl WorkbenchApp {
             },
             Command::Pause => self.runner.pause(),
             Command::Reset => {
+                // Undo brings back the run on screen
+                if let Some(run) = self.runner.take_run() {
+                    let mut present = self.present(false, false);
+                    present.run = Some(Box::new(run));
+                    self.undo.record(|| present, false);
+                }
                 let valid = self.runner.invalidate(&self.scene);
                 self.show_validity(valid);
                 self.auto_solve();
@@ -273,8 +285,12 @@ impl WorkbenchApp {
     }
 
     /// Shows the plot that fits the run a command starts: the residual for
-    /// sweeps, the kink angles for growth, the race for Compare solvers.
+    /// sweeps, the kink angles for growth, the race for Compare solvers
+    /// (unless the command line fixed the tab, `--plot`).
     fn follow_with_plot(&mut self, cmd: &Command) {
+        if self.options.plot.is_some() {
+            return;
+        }
         let iterative = self.scene.solver.kind != cdca::scene::SolverKind::Direct;
         self.plot_tab = match cmd {
             Command::Step | Command::Relax => PlotTab::ResidualBySweep,
@@ -339,7 +355,7 @@ impl WorkbenchApp {
         }
         if self.runner.simulation().is_some() {
             let r = self.runner.solve();
-            self.show_error(r);
+            self.show_error(r.map(drop));
         }
     }
 
@@ -370,7 +386,7 @@ impl WorkbenchApp {
     /// ([`follow_drag`](Self::follow_drag)), where the scene solves quickly,
     /// and is hidden otherwise; when the drag ends the simulation is
     /// rebuilt and re-solved if that is quick.
-    fn scene_changed(&mut self, ongoing: bool) {
+    pub(crate) fn scene_changed(&mut self, ongoing: bool) {
         self.replay_step = None;
         self.race = None;
         if ongoing && self.follows_drag() && self.runner.can_follow_drag() {
@@ -398,7 +414,8 @@ impl WorkbenchApp {
 
     /// Makes `scene` (checked) the scene being edited, with one undo step.
     fn open_scene(&mut self, source: String, scene: cdca::scene::SceneFile) {
-        self.undo.record(&self.scene, false);
+        // Undo brings back the scene, its run and its finished study
+        self.record_replacing(true, true);
         self.opened_scene = scene.clone();
         self.last_edited_crack = None;
         self.scene = scene;
@@ -408,10 +425,6 @@ impl WorkbenchApp {
         self.message = None;
         self.runner.forget_contact();
         self.no_tip_wanted = false;
-        // a finished study's results belong to the scene it varied
-        if self.study.as_ref().is_some_and(Study::finished) {
-            self.study = None;
-        }
         self.scene_changed(false);
         // an opened scene is shown solved whatever its size (an edit is
         // re-solved by itself only when that is quick): in slices, so no

@@ -1,5 +1,5 @@
 //! Editing the scene on the canvas: the active tool, the crack being drawn,
-//! the point being dragged, and the undo/redo stack of scene snapshots.
+//! the point being dragged.
 
 use cdca::scene::CrackSpec;
 use cdca::scene::SceneFile;
@@ -61,106 +61,10 @@ pub fn move_vertex(scene: &SceneFile, v: VertexRef, to: [f64; 2]) -> SceneFile {
     s
 }
 
-/// Snapshots of the scene before each edit.
-#[derive(Debug, Default)]
-pub struct UndoStack {
-    undo: Vec<SceneFile>,
-    redo: Vec<SceneFile>,
-    /// The last recorded edit was an ongoing drag: further ongoing edits
-    /// belong to the same undo step.
-    coalescing: bool,
-}
-
-/// Snapshots kept; older ones are dropped.
-const MAX_UNDO: usize = 200;
-
-impl UndoStack {
-    /// Records `before` as the state to return to, unless this edit
-    /// continues an ongoing drag.
-    pub fn record(&mut self, before: &SceneFile, ongoing: bool) {
-        if !(self.coalescing && ongoing) {
-            self.undo.push(before.clone());
-            if self.undo.len() > MAX_UNDO {
-                self.undo.remove(0);
-            }
-            self.redo.clear();
-        }
-        self.coalescing = ongoing;
-    }
-
-    /// Ends a drag so the next edit starts a new undo step.
-    pub fn end_coalescing(&mut self) {
-        self.coalescing = false;
-    }
-
-    /// The scene to go back to, given the current one.
-    pub fn undo(&mut self, current: &SceneFile) -> Option<SceneFile> {
-        self.coalescing = false;
-        let previous = self.undo.pop()?;
-        self.redo.push(current.clone());
-        Some(previous)
-    }
-
-    pub fn redo(&mut self, current: &SceneFile) -> Option<SceneFile> {
-        self.coalescing = false;
-        let next = self.redo.pop()?;
-        self.undo.push(current.clone());
-        Some(next)
-    }
-
-    pub fn can_undo(&self) -> bool {
-        !self.undo.is_empty()
-    }
-
-    pub fn can_redo(&self) -> bool {
-        !self.redo.is_empty()
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::scenes::default_scene;
-
-    fn renamed(name: &str) -> SceneFile {
-        SceneFile {
-            name: name.to_owned(),
-            ..default_scene()
-        }
-    }
-
-    #[test]
-    fn undo_then_redo_returns_to_each_state() {
-        let (a, b) = (renamed("a"), renamed("b"));
-        let mut stack = UndoStack::default();
-        stack.record(&a, false);
-        assert_eq!(stack.undo(&b), Some(a.clone()));
-        assert_eq!(stack.redo(&a), Some(b));
-        assert!(stack.can_undo());
-    }
-
-    #[test]
-    fn a_drag_is_one_undo_step() {
-        let mut stack = UndoStack::default();
-        stack.record(&renamed("start"), true);
-        stack.record(&renamed("mid 1"), true);
-        stack.record(&renamed("mid 2"), true);
-        stack.end_coalescing();
-        assert_eq!(
-            stack.undo(&renamed("end")).map(|s| s.name),
-            Some("start".to_owned())
-        );
-        assert!(!stack.can_undo());
-    }
-
-    #[test]
-    fn a_new_edit_clears_redo() {
-        let mut stack = UndoStack::default();
-        stack.record(&renamed("a"), false);
-        let _ = stack.undo(&renamed("b"));
-        stack.record(&renamed("a"), false);
-        assert!(!stack.can_redo());
-    }
 
     #[test]
     fn drawing_needs_two_distinct_points() {

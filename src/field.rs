@@ -212,9 +212,8 @@ impl FieldSampler {
         }
     }
 
-    /// Shows `field`, sampled elsewhere (the growth thread); a field being
-    /// built is dropped.
-    #[cfg(not(target_arch = "wasm32"))]
+    /// Shows `field`, sampled elsewhere (the growth thread) or before (a
+    /// run brought back by Undo); a field being built is dropped.
     pub fn show(&mut self, field: FieldSamples) {
         self.current = Some(field);
         self.building = None;

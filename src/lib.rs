@@ -26,6 +26,7 @@ mod path_prompt;
 mod persist;
 mod plot_tab;
 mod replay;
+mod restore;
 mod run;
 mod run_timer;
 mod runner;
@@ -36,6 +37,7 @@ pub mod study;
 pub mod study_file;
 mod study_map;
 mod task;
+mod undo;
 mod units;
 mod view;
 #[cfg(target_arch = "wasm32")]

@@ -6,7 +6,7 @@
 #[cfg(not(target_arch = "wasm32"))]
 const USAGE: &str = "usage: cdca-workbench [SCENE.json | --link LINK] [--run relax|grow|compare]
                      [--study PATH FROM TO COUNT] [--study-file STUDY.json]
-                     [--size WIDTHxHEIGHT] [--time-run]
+                     [--size WIDTHxHEIGHT] [--plot TAB] [--time-run]
 
 Opens SCENE.json, or the scene a shared link carries (a web address or its
 #scene=… fragment, from File > Copy link to this scene; default: the last
@@ -17,7 +17,9 @@ PATH (e.g. cracks.0.friction) over COUNT values from FROM to TO, in the
 Study tab's units (MPa, mm, °, or none); with --study-file, the first
 steps of every point of a study file (docs/studies.md) in the Study tab.
 --size sets the window's size in points (default 1400x900; e.g. 1024x640
-for a projector, 390x844 for a phone's). --time-run: when the --run
+for a projector, 390x844 for a phone's). --plot shows the plot TAB
+(residual, residual-time, k, angles, load, race or study) whatever runs,
+for screenshots. --time-run: when the --run
 ends, print its wall time and frame times and close the window.";
 
 /// What the command line asks for.
@@ -30,6 +32,8 @@ struct Launch {
     size: [f32; 2],
     /// `--time-run`.
     time_run: bool,
+    /// `--plot`: the plot tab shown whatever runs.
+    plot: Option<cdca_workbench::PlotTab>,
 }
 
 /// Parses the command line (without the program name). `Ok(None)`: help
@@ -42,6 +46,7 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Option<Launch>, 
         run: None,
         size: [1400.0, 900.0],
         time_run: false,
+        plot: None,
     };
     while let Some(arg) = args.next() {
         match arg.as_str() {
@@ -58,6 +63,13 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Option<Launch>, 
                 });
             }
             "--time-run" => launch.time_run = true,
+            "--plot" => {
+                let name = args.next().ok_or("--plot needs a tab")?;
+                launch.plot = Some(
+                    cdca_workbench::PlotTab::from_arg(&name)
+                        .ok_or(format!("--plot {name}: expected residual, residual-time, k, angles, load, race or study"))?,
+                );
+            }
             "--link" => {
                 let link = args.next().ok_or("--link needs a link (…#scene=…)")?;
                 let scene = match cdca_workbench::link::from_link(&link) {
@@ -169,6 +181,7 @@ fn main() -> eframe::Result {
                 launch.scene,
                 launch.run,
                 launch.time_run,
+                launch.plot,
             )))
         }),
     )

@@ -21,6 +21,21 @@ pub enum PlotTab {
 }
 
 impl PlotTab {
+    /// The tab a command line names (`--plot`): residual, residual-time,
+    /// k, angles, load, race or study.
+    pub fn from_arg(name: &str) -> Option<Self> {
+        Some(match name {
+            "residual" => Self::ResidualBySweep,
+            "residual-time" => Self::ResidualByTime,
+            "k" => Self::Sifs,
+            "angles" => Self::Angles,
+            "load" => Self::LoadFactor,
+            "race" => Self::SolverComparison,
+            "study" => Self::Study,
+            _ => return None,
+        })
+    }
+
     /// The plot that has something to show for `scene` before any run: the
     /// residual for an iterative solver, the SIFs for the direct one.
     pub fn fitting(scene: &SceneFile) -> Self {

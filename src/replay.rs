@@ -11,7 +11,10 @@
 //! about 18 MB for its 14 steps; solving a step again would need the
 //! run replayed from its start (the discretisation changes every step),
 //! seconds a step in the browser. Fields are kept for the last
-//! [`FIELDS_KEPT`] steps; earlier steps replay their geometry only.
+//! [`FIELDS_KEPT`] steps; earlier steps replay their geometry only. A run
+//! kept by Undo shares its steps' fields with the replay on screen.
+
+use std::sync::Arc;
 
 use cdca::report::{GrowthStepReport, Mode};
 
@@ -25,6 +28,7 @@ pub const FIELDS_KEPT: usize = 100;
 /// One step of the run as the canvas showed it after the step: the cracks
 /// grown by it, and the contact states, tips and field of the solve at the
 /// step's load (λ_cr under critical control).
+#[derive(Clone)]
 pub struct Snapshot {
     /// The step's number (as the reports number it).
     pub step: usize,
@@ -32,7 +36,7 @@ pub struct Snapshot {
     /// the link once made, and the step's λ.
     pub view: SolutionView,
     /// The field sampled at the step's load, if it was sampled and is kept.
-    pub field: Option<FieldSamples>,
+    pub field: Option<Arc<FieldSamples>>,
 }
 
 impl Snapshot {
@@ -47,7 +51,9 @@ impl Snapshot {
         let last = view.history.last()?;
         let at_load = at_load.filter(|a| a.load_factor == last.load_factor);
         let linked = view.coalescence.as_ref().filter(|c| c.step <= last.step);
-        let field = field.filter(|f| f.load_factor == last.load_factor).cloned();
+        let field = field
+            .filter(|f| f.load_factor == last.load_factor)
+            .map(|f| Arc::new(f.clone()));
         Some(Self {
             step: last.step,
             view: SolutionView {
@@ -71,6 +77,7 @@ impl Snapshot {
 /// The contact points and tips of a step's solve at its load, kept until
 /// the step is recorded (by then the tips have moved and the view holds
 /// neither).
+#[derive(Clone)]
 pub struct AtLoad {
     pub load_factor: f64,
     pub contact: Vec<cdca::ContactPointView>,
@@ -78,7 +85,7 @@ pub struct AtLoad {
 }
 
 /// The run's steps as stored for the replay.
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub struct Replay {
     pub snapshots: Vec<Snapshot>,
     at_load: Option<AtLoad>,

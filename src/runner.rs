@@ -8,7 +8,7 @@ use cdca::scene::{ContactUpdate, SceneFile, SolverKind};
 use cdca::{CriterionCurve, Scene, Simulation, SolveError};
 use web_time::Instant;
 
-use crate::field::{FieldKey, FieldSampler, LIVE_FIELD_INTERVAL};
+use crate::field::{FieldKey, FieldSampler, FieldSamples, LIVE_FIELD_INTERVAL};
 #[cfg(not(target_arch = "wasm32"))]
 use crate::grower::{Grower, Update};
 use crate::pacer::Pacer;
@@ -116,6 +116,23 @@ pub struct Runner {
     /// The error of a run that ended on the growth thread while the UI
     /// took the simulation back, shown at the next frame.
     ended_error: Option<String>,
+}
+
+/// A run's simulation and what the UI showed of it, kept by Undo
+/// ([`Runner::take_run`], [`Runner::restore_run`]).
+pub struct KeptRun {
+    sim: Simulation,
+    view: SolutionView,
+    field: Option<FieldSamples>,
+    replay: Replay,
+    growth_ready: bool,
+}
+
+impl KeptRun {
+    /// Growth steps done, as the status prints them.
+    pub fn steps(&self) -> usize {
+        self.view.steps_done
+    }
 }
 
 impl Default for Runner {
@@ -452,6 +469,65 @@ impl Runner {
         self.view.forget_contact();
     }
 
+    /// The run on screen (growth steps done), moved out for Undo before
+    /// Open, Reset or an edit replaces it; `None` without one. The kept
+    /// simulation's factor is freed (the next solve factorises again).
+    pub fn take_run(&mut self) -> Option<KeptRun> {
+        self.park();
+        if self.stale || self.view.history.is_empty() {
+            return None;
+        }
+        let mut sim = self.sim.take()?;
+        if !sim.is_relaxing() {
+            sim.release_solver();
+        }
+        let replay = std::mem::take(&mut self.replay);
+        Some(self.keep(sim, replay))
+    }
+
+    /// `sim` with what the UI shows of it and the run's `replay`; the run
+    /// on it stops.
+    fn keep(&mut self, sim: Simulation, replay: Replay) -> KeptRun {
+        self.drop_second_start();
+        self.run = None;
+        self.direct_solve = None;
+        KeptRun {
+            sim,
+            view: self.view.clone(),
+            field: self.field.current().cloned(),
+            replay,
+            growth_ready: self.growth_ready,
+        }
+    }
+
+    /// Brings back a run [`take_run`](Self::take_run) kept, as it was on
+    /// screen, with `scene` (the edited scene it was run from) as the
+    /// edited scene. What was on screen is dropped: take it first.
+    pub fn restore_run(&mut self, kept: KeptRun, scene: &SceneFile) {
+        self.park();
+        self.drop_second_start();
+        self.run = None;
+        self.direct_solve = None;
+        self.relaxation_started = false;
+        self.pacer.restart();
+        self.curves.clear();
+        // caches key on the version: the restored view is the newest
+        let version = self.view.version + 1;
+        self.view = kept.view;
+        self.view.version = version;
+        self.field.clear();
+        if let Some(mut field) = kept.field {
+            field.key.version = version;
+            self.field.show(field);
+        }
+        self.replay = kept.replay;
+        self.growth_ready = kept.growth_ready;
+        self.sim = Some(kept.sim);
+        // a kept run's scene was valid when it ran
+        let _ = self.check(scene);
+        self.stale = false;
+    }
+
     /// Builds a simulation of `scene` (checked; nothing solved yet).
     pub fn rebuild(&mut self, scene: &SceneFile) -> Result<(), String> {
         self.park();
@@ -484,9 +560,12 @@ impl Runner {
     /// animated. The solve starts from the state `cdca solve` starts from
     /// on the same scene ([`fresh_start`](Self::fresh_start)), so that its
     /// contact states and K do not depend on what ran before.
-    pub fn solve(&mut self) -> Result<(), String> {
+    ///
+    /// After growth, the grown scene is solved on a simulation of its own,
+    /// and the run's simulation is returned, as it was on screen, for Undo.
+    pub fn solve(&mut self) -> Result<Option<KeptRun>, String> {
         self.park();
-        self.fresh_start()?;
+        let kept = self.fresh_start()?;
         self.drop_second_start();
         self.check_second_start = true;
         // the direct solve too runs as a relaxation, one contact iteration
@@ -497,7 +576,7 @@ impl Runner {
         }
         self.relaxation_started = false;
         self.relax();
-        Ok(())
+        Ok(kept)
     }
 
     /// Rebuilds the simulation from its scene unless it is untouched since
@@ -508,10 +587,11 @@ impl Runner {
     /// 12 stick and 17 slip points instead of 29 slip, and then not
     /// converge. The discretisation is kept (`Simulation::with_scene`)
     /// unless growth changed the cracks; after growth the grown scene (as
-    /// File ▸ Save writes it) is solved, with the panel's solver settings.
-    fn fresh_start(&mut self) -> Result<(), String> {
+    /// File ▸ Save writes it) is solved, with the panel's solver settings,
+    /// and the run's simulation is returned (see [`solve`](Self::solve)).
+    fn fresh_start(&mut self) -> Result<Option<KeptRun>, String> {
         let Some(sim) = self.sim.as_ref() else {
-            return Ok(());
+            return Ok(None);
         };
         let touched = sim.is_solved()
             || sim.is_relaxing()
@@ -519,10 +599,12 @@ impl Runner {
             || self.growth_ready
             || !sim.history().is_empty();
         if !touched {
-            return Ok(());
+            return Ok(None);
         }
         let edited = self.checked()?.clone();
-        let grown = !sim.history().is_empty();
+        let run = !sim.history().is_empty();
+        // (a solve after a solve after growth solves the grown scene again)
+        let grown = run || !self.view.earlier.is_empty();
         let scene = if grown {
             sim.scene()
                 .edit(|s| s.solver = edited.solver.clone())
@@ -531,6 +613,14 @@ impl Runner {
             edited
         };
         let old = self.sim.take();
+        let (old, kept) = match old {
+            Some(mut sim) if run => {
+                sim.release_solver();
+                let replay = self.replay.clone();
+                (None, Some(self.keep(sim, replay)))
+            }
+            old => (old, None),
+        };
         self.build(old, scene)?;
         if grown {
             // the run's steps stay in the plots
@@ -539,7 +629,7 @@ impl Runner {
         self.growth_ready = false;
         self.relaxation_started = false;
         self.refresh(false, None);
-        Ok(())
+        Ok(kept)
     }
 
     /// One sweep of the current relaxation (starting one if needed).

@@ -7,6 +7,8 @@
 
 #[path = "support/field.rs"]
 mod field;
+#[path = "support/harness.rs"]
+mod support;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -16,8 +18,7 @@ use cdca_workbench::{Command, Options, RunMode, WorkbenchApp};
 use egui::{Event, Key, Modifiers, PointerButton, Pos2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
-
-const SIZE: [f32; 2] = [1400.0, 900.0];
+use support::{SIZE, harness, no_solver};
 
 /// A file dropped on the window.
 #[derive(Debug)]
@@ -33,27 +34,6 @@ impl egui::DroppedFile for TestFile {
     fn bytes(&self) -> Result<Vec<u8>, String> {
         Ok(self.bytes.clone())
     }
-}
-
-fn no_solver() -> Options {
-    Options {
-        solve_on_start: false,
-        auto_solve: false,
-        ..Options::default()
-    }
-}
-
-fn harness(options: Options) -> Harness<'static, WorkbenchApp> {
-    Harness::builder()
-        .with_size(SIZE)
-        .with_max_steps(400)
-        .build_ui_state(
-            |ui, app: &mut WorkbenchApp| {
-                app.logic(ui.ctx());
-                app.ui(ui);
-            },
-            WorkbenchApp::new(options),
-        )
 }
 
 /// Edits a copy of the open scene and applies it, as a panel would.

@@ -14,7 +14,7 @@ use egui_kittest::kittest::Queryable;
 
 #[path = "support/harness.rs"]
 mod support;
-use support::{SIZE, grow, harness, no_solver, run_until_paused};
+use support::{SIZE, grow, harness, no_solver, run_study, run_until_paused};
 
 /// Steps frames until no job holds the slot (at most `frames`).
 fn run_until_idle(h: &mut Harness<'_, WorkbenchApp>, frames: usize) {
@@ -886,7 +886,8 @@ fn each_bundled_pair_ends_in_a_story() {
 /// hold every step (the Angles plot's last point is the last step), the
 /// status still counts them, and a banner says what was solved. (It used
 /// to show λ "–" and "This run resumes after growth step N" with empty
-/// plots.)
+/// plots.) Undo then brings the run back as it ended (its outcome, story,
+/// steps, cracks and replay), and Redo the solve.
 #[test]
 #[cfg_attr(
     debug_assertions,
@@ -944,6 +945,106 @@ fn a_solve_queued_behind_a_run_keeps_the_runs_steps() {
              λ = {last:.3}. The run's steps stay in the plots."
         )))
     );
+    let history = app.growth_history().to_vec();
+    let cracks = app.canvas_cracks();
+    let replay = app.replay_steps();
+
+    h.get_by_label("Undo").click();
+    h.run_steps(3);
+    let app = h.state();
+    assert!(app.growth_outcome().is_some(), "the run's end is back");
+    assert!(app.run_story().is_some(), "and its story");
+    assert_eq!(app.growth_history(), history.as_slice(), "every step");
+    assert_eq!(app.growth_steps(), steps);
+    assert_eq!(app.load_factor(), last, "at the run's last load");
+    assert_eq!(app.canvas_cracks(), cracks, "the grown cracks");
+    assert_eq!(app.replay_steps(), replay, "the replay");
+    assert_eq!(app.running_job(), None, "nothing is solved again");
+    assert_eq!(
+        app.message(),
+        Some(&Message::Info(format!(
+            "Back to the run after growth step {steps}, as it was."
+        )))
+    );
+
+    h.get_by_label("Redo").click();
+    h.run_steps(3);
+    let app = h.state();
+    assert!(
+        app.growth_outcome().is_none(),
+        "the solve is back: {:?}",
+        app.message()
+    );
+    assert!(app.is_solved());
+    assert_eq!(app.growth_history(), history.as_slice());
+}
+
+/// Reset, Open and a new study each replace what is on screen; one Undo
+/// brings it back as it was: the run with its outcome, steps, cracks and
+/// replay (after Reset and Open, which also gives back the scene and its
+/// title), and the finished study (after a new study).
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn undo_brings_back_what_reset_open_and_a_new_study_replaced() {
+    let mut h = solved_default();
+    grow(&mut h, "Run growth");
+    let app = h.state();
+    let outcome = app.growth_outcome();
+    assert!(outcome.is_some(), "the run ended");
+    let (history, cracks, replay) = (
+        app.growth_history().to_vec(),
+        app.canvas_cracks(),
+        app.replay_steps(),
+    );
+    let (scene, title) = (app.scene().clone(), app.scene_source().to_owned());
+    let the_run_is_back = |app: &WorkbenchApp, after: &str| {
+        assert_eq!(app.growth_outcome(), outcome, "after {after}");
+        assert_eq!(app.growth_history(), history.as_slice(), "after {after}");
+        assert_eq!(app.canvas_cracks(), cracks, "after {after}");
+        assert_eq!(app.replay_steps(), replay, "after {after}");
+        assert_eq!(app.scene(), &scene, "after {after}");
+        assert_eq!(app.scene_source(), title, "after {after}");
+        assert_eq!(app.running_job(), None, "after {after}: nothing runs");
+    };
+
+    h.get_by_label("Reset").click();
+    h.run_steps(3);
+    run_until_idle(&mut h, 5000);
+    assert!(
+        h.state().growth_history().is_empty(),
+        "Reset cleared the run"
+    );
+    h.get_by_label("Undo").click();
+    h.run_steps(3);
+    the_run_is_back(h.state(), "Reset");
+
+    let pair = cdca_workbench::scenes::BUNDLED
+        .iter()
+        .position(|b| b.file == "specimen_two_flaws_stepped.json")
+        .expect("bundled");
+    h.state_mut().push(Command::OpenBundled(pair));
+    h.run_steps(3);
+    run_until_idle(&mut h, 5000);
+    assert_ne!(h.state().scene_source(), title, "another scene is open");
+    h.get_by_label("Undo").click();
+    h.run_steps(3);
+    the_run_is_back(h.state(), "Open");
+
+    run_study(&mut h, 0.2, 0.6, 3);
+    let first = h.state().study().map(|s| s.to_csv());
+    run_study(&mut h, 0.1, 0.3, 2);
+    assert_ne!(h.state().study().map(|s| s.to_csv()), first);
+    h.get_by_label("Undo").click();
+    h.run_steps(3);
+    assert_eq!(
+        h.state().study().map(|s| s.to_csv()),
+        first,
+        "the first study is back"
+    );
+    the_run_is_back(h.state(), "a new study");
 }
 
 /// The replay of the bundled stepped pair's run: at each marked step (the

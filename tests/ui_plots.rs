@@ -13,7 +13,7 @@ use egui_kittest::kittest::{NodeT, Queryable};
 
 #[path = "support/harness.rs"]
 mod harness;
-use harness::{SIZE, grow, harness, run_until_paused};
+use harness::{SIZE, grow, harness, run_study, run_until_paused};
 
 /// Smallest data area of a plot, px (width, height): the Study tab's two
 /// plots share the panel's width with its table.
@@ -57,32 +57,6 @@ fn race(h: &mut Harness<'_, WorkbenchApp>) {
         h.state()
             .race()
             .is_some_and(cdca_workbench::compare::Race::finished)
-    );
-    h.run_steps(3);
-}
-
-/// Runs a study of the first crack's friction, 3 values, to its end.
-fn study(h: &mut Harness<'_, WorkbenchApp>) {
-    h.state_mut()
-        .push(Command::RunStudy(cdca_workbench::study::StudySetup {
-            path: "cracks.0.friction".to_owned(),
-            from: 0.2,
-            to: 0.6,
-            count: 3,
-        }));
-    for _ in 0..5000 {
-        h.step();
-        if h.state()
-            .study()
-            .is_some_and(cdca_workbench::study::Study::finished)
-        {
-            break;
-        }
-    }
-    assert!(
-        h.state()
-            .study()
-            .is_some_and(cdca_workbench::study::Study::finished)
     );
     h.run_steps(3);
 }
@@ -257,7 +231,7 @@ fn every_tab_is_readable(file: Option<&str>) {
     }
     race(&mut h);
     problems.extend(check_tab(&mut h, "Solver race", MIN_PLOT));
-    study(&mut h);
+    run_study(&mut h, 0.2, 0.6, 3);
     problems.extend(check_tab(&mut h, "Study", MIN_STUDY_PLOT));
     assert!(problems.is_empty(), "{file:?}:\n{}", problems.join("\n"));
 }

@@ -2,6 +2,8 @@
 //! tests: a harness at a window size, and the waits for a run to end.
 #![allow(dead_code)] // each test file uses its own part
 
+use cdca_workbench::command::Command;
+use cdca_workbench::study::{Study, StudySetup};
 use cdca_workbench::{Options, RunMode, WorkbenchApp};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -60,4 +62,23 @@ pub fn grow(h: &mut Harness<'_, WorkbenchApp>, button: &str) {
     h.run_steps(2);
     run_until_paused(h, 20_000);
     h.run_steps(2);
+}
+
+/// Runs a study of the first crack's friction, `count` values from `from`
+/// to `to`, to its end.
+pub fn run_study(h: &mut Harness<'_, WorkbenchApp>, from: f64, to: f64, count: usize) {
+    h.state_mut().push(Command::RunStudy(StudySetup {
+        path: "cracks.0.friction".to_owned(),
+        from,
+        to,
+        count,
+    }));
+    for _ in 0..5000 {
+        h.step();
+        if h.state().study().is_some_and(Study::finished) {
+            break;
+        }
+    }
+    assert!(h.state().study().is_some_and(Study::finished));
+    h.run_steps(3);
 }

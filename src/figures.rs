@@ -333,20 +333,20 @@ fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure>
                 ),
             }),
     );
-    // the first link between two flaws (coalescence), and where secondary
-    // cracks started
-    if let Some((s, l)) = h
-        .iter()
-        .find_map(|s| s.links.iter().find(|l| l.coalescence).map(|l| (s, l)))
+    // the first link between two flaws (coalescence), named as the story
+    // and the canvas name it: the drawn flaws a crack from the intact rock
+    // joined, not that crack's own number
+    if let Some(c) = &view.coalescence
+        && let Some(s) = h.iter().find(|s| s.step == c.step)
     {
         notes.push(Note {
             at: point(s),
             text: format!(
-                "λ = {:.3}: Cracks {} and {} linked ({})",
-                s.load_factor,
-                l.flaws[0] + 1,
-                l.flaws[1] + 1,
-                l.category()
+                "λ = {:.3}: Crack {} and Crack {} linked ({})",
+                c.load_factor,
+                c.flaws[0] + 1,
+                c.flaws[1] + 1,
+                c.category
             ),
         });
     }
@@ -949,8 +949,16 @@ mod tests {
     /// naming the flaws, 1-based as the panel counts, and what it joins).
     #[test]
     fn the_first_link_and_the_secondary_starts_are_marked() {
+        let history = linked_history();
+        let link = &history[2].links[0];
         let view = SolutionView {
-            history: linked_history(),
+            coalescence: Some(cdca::report::CoalescenceReport {
+                step: 3,
+                load_factor: 0.9,
+                category: link.category(),
+                flaws: link.flaws,
+            }),
+            history,
             ..SolutionView::default()
         };
         let load = &figures(PlotTab::LoadFactor, &view, None, None, SIZE)[0];
@@ -968,7 +976,7 @@ mod tests {
         assert_eq!(link.at, [5.5, 0.9]);
         assert_eq!(
             link.text,
-            "λ = 0.900: Cracks 1 and 2 linked (secondary–wing)"
+            "λ = 0.900: Crack 1 and Crack 2 linked (secondary–wing)"
         );
     }
 }

@@ -359,9 +359,6 @@ impl Canvas {
             );
         }
         symbols::paint_tips(painter, &view, &input.solution.tips, input.selected_tip);
-        if let (Some(at), Some(c)) = (input.solution.junction, &input.solution.coalescence) {
-            symbols::paint_link(painter, &view, at, c);
-        }
         self.key_rect = symbols::paint_key(
             painter,
             view.rect,
@@ -387,6 +384,10 @@ impl Canvas {
         }
         if editor.tool == Tool::Select {
             symbols::paint_handles(painter, &view, scene, hovered_vertex);
+        }
+        // the link's label over the handles, which covered its first word
+        if let (Some(at), Some(c)) = (input.solution.junction, &input.solution.coalescence) {
+            symbols::paint_link(painter, &view, at, c);
         }
         self.paint_drawing(painter, editor);
         self.paint_status(painter, editor);

@@ -400,7 +400,7 @@ pub fn paint_tips(
 }
 
 /// Where two flaws linked: a ring at the junction and, beside it, the
-/// flaws and the step ("Cracks 1 and 2 linked, step 9") on the theme's
+/// flaws and the step ("Crack 1 and Crack 2 linked, step 9") on the theme's
 /// window fill.
 pub fn paint_link(
     painter: &Painter,
@@ -413,7 +413,7 @@ pub fn paint_link(
     painter.circle_stroke(q, 9.0, Stroke::new(1.5, Color32::BLACK));
     let visuals = painter.ctx().global_style().visuals.clone();
     let text = format!(
-        "Cracks {} and {} linked, step {}",
+        "Crack {} and Crack {} linked, step {}",
         link.flaws[0] + 1,
         link.flaws[1] + 1,
         link.step

@@ -11,17 +11,26 @@
 #     bundle by 7% (docs/browser.md).
 #
 # With rustup's wasm32 target, `trunk build --release` does the same (see the
-# docs/browser.md).
+# docs/browser.md), and so does `--rustup`: the wasm build with rustup's
+# compiler and its prebuilt std (no Debian compiler packages; no
+# -Zlocation-detail, which needs a nightly compiler: about 0.1 MiB more),
+# into $CARGO_TARGET_DIR or target-web-rustup; the rest as below.
 #
-# Usage: scripts/build-web.sh        (serve with:
+# Usage: scripts/build-web.sh [--rustup]   (serve with:
 #        python3 -m http.server -b 127.0.0.1 -d dist 8080)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+rustup_target=0
+if [ "${1:-}" = "--rustup" ]; then
+    rustup_target=1
+fi
+
 app=cdca-workbench
 profile=web # Cargo.toml [profile.web]: release + LTO, for a smaller bundle
 wasm_ld=/usr/lib/llvm-22/bin/wasm-ld
-packages=(rustc-web cargo-web rust-web-src lld-22)
+packages=()
+((rustup_target)) || packages+=(rustc-web cargo-web rust-web-src lld-22)
 # node and npm only where missing: a machine whose node comes from elsewhere
 # (with its own npm) must not get Debian's, which conflict with it.
 command -v node >/dev/null 2>&1 || packages+=(nodejs)
@@ -57,17 +66,24 @@ if [ "$(wasm-bindgen --version 2>/dev/null | awk '{ print $2 }')" != "$bindgen_v
 fi
 
 # --- 3. The wasm build -------------------------------------------------------
-# RUSTC etc. only for this command: exported, they would switch native
-# builds to Debian's compiler.
 step "cargo build --target wasm32-unknown-unknown --profile $profile"
-# -Zlocation-detail=none: panics keep their message but not the source
-# file, line and column (about 0.1 MiB of strings).
-RUSTC=/usr/bin/rustc RUSTDOC=/usr/bin/rustdoc RUSTC_BOOTSTRAP=1 \
-    RUSTFLAGS="-Zlocation-detail=none" \
-    CARGO_TARGET_DIR=target-web \
-    CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_LINKER="$wasm_ld" \
-    /usr/bin/cargo build --target wasm32-unknown-unknown --profile "$profile" \
-    -Zbuild-std=std,panic_abort --bin "$app"
+if ((rustup_target)); then
+    target_dir="${CARGO_TARGET_DIR:-target-web-rustup}"
+    CARGO_TARGET_DIR="$target_dir" cargo build --target wasm32-unknown-unknown \
+        --profile "$profile" --bin "$app"
+else
+    target_dir=target-web
+    # RUSTC etc. only for this command: exported, they would switch native
+    # builds to Debian's compiler. -Zlocation-detail=none: panics keep
+    # their message but not the source file, line and column (about 0.1 MiB
+    # of strings).
+    RUSTC=/usr/bin/rustc RUSTDOC=/usr/bin/rustdoc RUSTC_BOOTSTRAP=1 \
+        RUSTFLAGS="-Zlocation-detail=none" \
+        CARGO_TARGET_DIR="$target_dir" \
+        CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_LINKER="$wasm_ld" \
+        /usr/bin/cargo build --target wasm32-unknown-unknown --profile "$profile" \
+        -Zbuild-std=std,panic_abort --bin "$app"
+fi
 
 # --- 4. JS bindings and the page ---------------------------------------------
 step "wasm-bindgen"
@@ -77,7 +93,7 @@ mkdir -p dist
 # their message in the console, with fewer names in the stack trace.
 wasm-bindgen --target web --no-typescript --remove-name-section \
     --out-dir dist --out-name "$app" \
-    "target-web/wasm32-unknown-unknown/$profile/$app.wasm"
+    "$target_dir/wasm32-unknown-unknown/$profile/$app.wasm"
 # index.html serves trunk and this script: drop trunk's <link data-trunk>
 # lines and load the bindings ourselves.
 loader="<script type=\"module\">import init from \"./$app.js\"; init().catch((e) => window.cdcaLoadFailed(e));</script>"

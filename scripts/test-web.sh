@@ -5,32 +5,51 @@
 # canvas and the solved default scene, clicks Step and "Grow one step",
 # saves a screenshot and fails on any console error or panic message
 # (tests/web/smoke.mjs). Then, in a fresh page, it presses Run growth on the
-# default scene and prints the browser's frame times for up to 20 s
-# ("browser frame times during Run growth: ..."; CDCA_RUN_GROWTH_MS sets
-# the duration, 0 skips it).
+# bundled stepped pair and prints the run's time and the browser's frame
+# times until it ends ("browser frame times during Run growth: ...";
+# CDCA_RUN_GROWTH_MS caps the duration, default 60 s, 0 skips it). Last,
+# the layout at 1280 × 800, 1024 × 640 and 390 × 844, loaded and resized
+# (tests/web/layout.mjs, screenshots web-layout-*.png next to SCREENSHOT).
 #
-#   bash scripts/test-web.sh [--no-build] [SCREENSHOT]
+#   bash scripts/test-web.sh [--no-build | --rustup] [--first-frame [STARTS]] [SCREENSHOT]
 #       SCREENSHOT defaults to target-web/web-screenshot.png; the app's
 #       solve and frame timings, and the Run growth frame times, go next
-#       to it (web-timings.txt).
+#       to it (web-timings.txt). --rustup builds with rustup's wasm target
+#       (scripts/build-web.sh --rustup). --first-frame: instead of the
+#       tests, times the first frame and the first field over STARTS
+#       starts (default 10) per scene (tests/web/first_frame.mjs; writes
+#       web-first-frame.csv next to SCREENSHOT). Run on an idle machine.
 #
 # Installs what it needs: chromium (apt-get), playwright-core (npm ci).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-build=1
-if [ "${1:-}" = "--no-build" ]; then
-    build=0
+build=(bash scripts/build-web.sh)
+first_frame=0
+while (($#)); do
+    case "$1" in
+        --no-build) build=() ;;
+        --rustup) build+=(--rustup) ;;
+        --first-frame)
+            first_frame=10
+            if [[ "${2:-}" =~ ^[0-9]+$ ]]; then
+                first_frame=$2
+                shift
+            fi
+            ;;
+        *) break ;;
+    esac
     shift
-fi
+done
 screenshot="${1:-target-web/web-screenshot.png}"
-mkdir -p "$(dirname "$screenshot")"
-timings="$(dirname "$screenshot")/web-timings.txt"
+out="$(dirname "$screenshot")"
+mkdir -p "$out"
+timings="$out/web-timings.txt"
 
 step() { printf '\n== %s (%ds)\n' "$1" "$SECONDS"; }
 
-if ((build)); then
-    bash scripts/build-web.sh
+if ((${#build[@]})); then
+    "${build[@]}"
 fi
 [ -f dist/index.html ] || { echo "no dist/: run scripts/build-web.sh" >&2; exit 1; }
 
@@ -67,6 +86,14 @@ for _ in range(100):
         time.sleep(0.1)
 PY
 
+if ((first_frame)); then
+    step "first frame, $first_frame starts per scene, http://127.0.0.1:$port/"
+    node tests/web/first_frame.mjs "http://127.0.0.1:$port/" "$out/web-first-frame.csv" "$first_frame"
+    step "done"
+    exit
+fi
 step "headless Chromium on http://127.0.0.1:$port/"
 node tests/web/smoke.mjs "http://127.0.0.1:$port/" "$screenshot" "$timings"
+step "layout at three sizes, loaded and resized"
+node tests/web/layout.mjs "http://127.0.0.1:$port/" "$out"
 step "done"

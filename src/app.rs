@@ -187,6 +187,10 @@ pub struct WorkbenchApp {
     /// freed the slot.
     pub(crate) queued: Option<Command>,
     pub(crate) frame_stats: FrameStats,
+    /// A running job also advances between frames, and that loop repaints
+    /// (the browser wrapper's `web_work`): the app then does not ask for a
+    /// frame after every frame while a job runs.
+    pub(crate) works_between_frames: bool,
     /// The command line's run, timed (`--time-run`).
     run_timer: RunTimer,
     frame_start: Option<Instant>,
@@ -242,6 +246,7 @@ impl WorkbenchApp {
             drag_followed: false,
             queued: None,
             frame_stats: FrameStats::default(),
+            works_between_frames: false,
             run_timer: RunTimer::default(),
             frame_start: None,
             frame_solver_seconds: 0.0,
@@ -630,10 +635,12 @@ impl WorkbenchApp {
         // natively the growth thread repaints the UI when it has something
         // to show (and the field comes with it)
         let on_thread = self.runner.grows_on_thread(ctx);
-        let busy = (self.running_job().is_some() && !on_thread)
+        // in a browser, a job working between frames repaints when due
+        let away = on_thread || (self.works_between_frames && self.running_job().is_some());
+        let busy = (self.running_job().is_some() && !away)
             || self.queued.is_some()
             || self.waiting.is_some()
-            || (!on_thread
+            || (!away
                 && self
                     .field_key()
                     .is_some_and(|k| !self.runner.field().is_current(&k)));
@@ -665,6 +672,24 @@ impl WorkbenchApp {
             self.frame_solver_seconds = 0.0;
             return;
         }
+        self.advance_tasks(deadline);
+        self.frame_solver_seconds = start.elapsed().as_secs_f64();
+    }
+
+    /// The running job's work between frames, until `deadline`: the
+    /// browser wrapper calls it in tasks of its own (`src/web_work.rs`),
+    /// where software painting leaves the job a seventh of the time in
+    /// frames. The same tasks in the same order as in a frame, so results
+    /// do not depend on where the slices fall. Nothing without a running
+    /// job.
+    pub fn advance_job_until(&mut self, deadline: Instant) {
+        if self.running_job().is_some() {
+            self.advance_tasks(deadline);
+        }
+    }
+
+    /// [`Self::run_tasks`]'s work until `deadline`.
+    fn advance_tasks(&mut self, deadline: Instant) {
         let key = self.field_key();
         let mut field = FieldTask::new(&mut self.runner, key);
         if field.advance(deadline) == Ok(Progress::Finished) {
@@ -676,7 +701,6 @@ impl WorkbenchApp {
                 let _ = FieldTask::new(&mut self.runner, key).advance(deadline);
             }
         }
-        self.frame_solver_seconds = start.elapsed().as_secs_f64();
     }
 
     /// The task of the job holding the slot, if one runs.

@@ -204,7 +204,9 @@ pub fn default_path(name: &str, _last: Option<&std::path::Path>) -> String {
     name.to_owned()
 }
 
+// the native dialog's signature: it can fail, this one cannot
 #[cfg(target_arch = "wasm32")]
+#[allow(clippy::unnecessary_wraps)]
 pub fn open_scene_dialog(_last: Option<&std::path::Path>) -> Result<Picked<OpenedFile>, String> {
     wasm_bindgen_futures::spawn_local(async {
         let picked = rfd::AsyncFileDialog::new()

@@ -42,6 +42,8 @@ mod units;
 mod view;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
+#[cfg(target_arch = "wasm32")]
+mod web_work;
 
 pub use app::{Options, StartRun, WorkbenchApp};
 pub use command::Command;

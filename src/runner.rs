@@ -1042,7 +1042,9 @@ impl Runner {
 impl Runner {
     /// The growth thread has the simulation: the UI need not repaint but
     /// when it sends an update (it repaints the UI through `waker`, the
-    /// app's context).
+    /// app's context). (In a browser there is no thread and no `self` to
+    /// read.)
+    #[cfg_attr(target_arch = "wasm32", allow(clippy::unused_self))]
     pub fn grows_on_thread(&mut self, waker: &egui::Context) -> bool {
         #[cfg(not(target_arch = "wasm32"))]
         {
@@ -1062,7 +1064,8 @@ impl Runner {
     /// has it, for whatever comes next (an edit, Pause, Save, an export):
     /// the run stands where the thread stopped and goes on at the next
     /// frame unless changed. Its error, if it ended in one, is kept for
-    /// [`take_error`](Self::take_error).
+    /// [`take_error`](Self::take_error). Nothing in a browser.
+    #[cfg_attr(target_arch = "wasm32", allow(clippy::unused_self))]
     pub fn park(&mut self) {
         #[cfg(not(target_arch = "wasm32"))]
         if let Some(Err(e)) = self.take_back() {

@@ -4,7 +4,13 @@
 //! browser build can be compared with the native one.
 //!
 //! Everything else is the same app: the same per-frame solver budget, the
-//! same persistence (eframe keeps it in the page's local storage).
+//! same persistence (eframe keeps it in the page's local storage). What
+//! the browser adds is a running job's work between frames
+//! ([`BetweenFrames`]); the app is shared with those tasks, hence the
+//! `Rc<RefCell<…>>`.
+
+use std::cell::RefCell;
+use std::rc::Rc;
 
 use wasm_bindgen::JsValue;
 use web_time::{Duration, Instant};
@@ -13,13 +19,15 @@ use crate::app::WorkbenchApp;
 use crate::command::Command;
 use crate::io;
 use crate::view::Message;
+use crate::web_work::BetweenFrames;
 
 /// How often frame statistics are logged while the app is busy.
 const REPORT_EVERY: Duration = Duration::from_secs(2);
 
 /// [`WorkbenchApp`] as the web runner sees it.
 pub struct WebApp {
-    app: WorkbenchApp,
+    app: Rc<RefCell<WorkbenchApp>>,
+    between: Rc<BetweenFrames>,
     /// What was last logged, to log only changes.
     logged_solve: Option<f64>,
     logged_growth_steps: usize,
@@ -29,6 +37,10 @@ pub struct WebApp {
     /// The page asked for test hooks (`?cdca_test`): the widgets and the
     /// app's state are published on `window` each frame.
     test_hooks: bool,
+    /// When the first frame was laid out and the first field shown, ms
+    /// since the page's navigation began (`performance.now()`).
+    first_frame_ms: Option<f64>,
+    first_field_ms: Option<f64>,
 }
 
 impl WebApp {
@@ -51,42 +63,78 @@ impl WebApp {
         if hash.contains("scene=") {
             app.push(Command::OpenLink(hash));
         }
+        let app = Rc::new(RefCell::new(app));
+        // `?cdca_frames_only`: the job in the frames only, as before the
+        // work between frames, to measure what that gains
+        let between = BetweenFrames::new(&app, cc.egui_ctx.clone());
+        if page_query().contains("cdca_frames_only") {
+            between.disable();
+        }
+        app.borrow_mut().works_between_frames = between.enabled();
         Self {
+            between,
             app,
             logged_solve: None,
             logged_growth_steps: 0,
             job_was_running: false,
             next_report: Instant::now() + REPORT_EVERY,
             test_hooks,
+            first_frame_ms: None,
+            first_field_ms: None,
         }
     }
 
-    /// For the browser test: what it asserts on, as `window.cdcaState`.
-    fn state_to_page(&self) {
+    /// For the browser test: what it asserts on, as `window.cdcaState`;
+    /// rectangles in CSS pixels, as `window.cdcaWidgets`.
+    fn state_to_page(&self, zoom: f64) {
+        let app = self.app.borrow();
         let state = js_sys::Object::new();
         let set = |key: &str, value: JsValue| {
             let _ = js_sys::Reflect::set(&state, &key.into(), &value);
         };
-        set("sceneName", self.app.scene().name.as_str().into());
-        set("solved", self.app.is_solved().into());
-        set("fieldShown", self.app.field_is_shown().into());
+        set("sceneName", app.scene().name.as_str().into());
+        set("solved", app.is_solved().into());
+        set("fieldShown", app.field_is_shown().into());
         // Sub-cells of the shown field with a finite stress (0: nothing
         // coloured, e.g. a field sampled before a solve).
-        let finite = self.app.runner.field().current().map_or(0, |f| {
+        let finite = app.runner.field().current().map_or(0, |f| {
             f.samples.iter().filter(|s| s.stress[0].is_finite()).count()
         });
         set("fieldFinite", (finite as f64).into());
-        set("growthSteps", (self.app.growth_steps() as f64).into());
-        set(
-            "residualSamples",
-            (self.app.residual_samples() as f64).into(),
-        );
-        set("runMode", format!("{:?}", self.app.run_mode()).into());
-        let crack_points: usize = self.app.simulated_cracks().iter().map(Vec::len).sum();
+        set("growthSteps", (app.growth_steps() as f64).into());
+        set("residualSamples", (app.residual_samples() as f64).into());
+        set("runMode", format!("{:?}", app.run_mode()).into());
+        let crack_points: usize = app.simulated_cracks().iter().map(Vec::len).sum();
         set("crackPoints", (crack_points as f64).into());
+        let view = app.runner.view();
+        set("loadFactor", view.load_factor.into());
+        let ms = |t: Option<f64>| t.map_or(JsValue::NULL, JsValue::from);
+        set("firstFrameMs", ms(self.first_frame_ms));
+        set("firstFieldMs", ms(self.first_field_ms));
+        // the specimen and the keys drawn on the canvas, for the layout
+        // test (issue 56): how large the specimen shows, and that no key
+        // covers another
+        set("specimen", rect_to_page(app.specimen_rect(), zoom).into());
+        let keys = js_sys::Array::new();
+        let (key, legend) = app.canvas_keys();
+        let named = [("key", key), ("colour legend", legend)]
+            .into_iter()
+            .filter_map(|(name, r)| r.map(|r| (name, r)))
+            .chain(
+                app.canvas
+                    .load_label_rects
+                    .iter()
+                    .map(|&r| ("load label", r)),
+            );
+        for (name, r) in named {
+            let k = rect_to_page(r, zoom);
+            let _ = js_sys::Reflect::set(&k, &"name".into(), &name.into());
+            keys.push(&k);
+        }
+        set("keys", keys.into());
         set(
             "message",
-            match self.app.message() {
+            match app.message() {
                 Some(Message::Error(e)) => format!("error: {e}").into(),
                 Some(Message::Info(i)) => i.as_str().into(),
                 None => JsValue::NULL,
@@ -95,21 +143,44 @@ impl WebApp {
         set_on_window("cdcaState", &state);
     }
 
-    fn take_opened_files(&mut self) {
+    fn take_opened_files(app: &mut WorkbenchApp) {
         for result in io::take_opened() {
             match result {
-                Ok(file) => self.app.push(Command::OpenSceneText {
+                Ok(file) => app.push(Command::OpenSceneText {
                     source: file.name,
                     text: file.text,
                 }),
-                Err(e) => self.app.message = Some(Message::Error(e)),
+                Err(e) => app.message = Some(Message::Error(e)),
             }
+        }
+    }
+
+    /// When the first frame was laid out and the first field shown (as
+    /// natively with `CDCA_STARTUP_REPORT`), to the console and, with the
+    /// test hooks, to the page: `scripts/test-web.sh` times the browser's
+    /// first frame from it.
+    fn note_startup(&mut self) {
+        let now = || {
+            web_sys::window()
+                .and_then(|w| w.performance())
+                .map_or(0.0, |p| p.now())
+        };
+        if self.first_frame_ms.is_none() {
+            let t = now();
+            self.first_frame_ms = Some(t);
+            log::info!("timing: first frame {t:.0} ms after navigation");
+        }
+        if self.first_field_ms.is_none() && self.app.borrow().runner.field().current().is_some() {
+            let t = now();
+            self.first_field_ms = Some(t);
+            log::info!("timing: first field {t:.0} ms after navigation");
         }
     }
 
     /// Solve, growth and frame times to the console (`log` → `console.*`).
     fn log_timings(&mut self) {
-        let runner = &self.app.runner;
+        let mut app = self.app.borrow_mut();
+        let runner = &app.runner;
         let solve = runner.last_solve_seconds();
         if solve.is_some() && solve != self.logged_solve {
             self.logged_solve = solve;
@@ -119,8 +190,8 @@ impl WebApp {
                 solve.unwrap_or_default() * 1e3
             );
         }
-        let steps = self.app.growth_steps();
-        let stats = self.app.frame_stats();
+        let steps = app.growth_steps();
+        let stats = app.frame_stats();
         if steps != self.logged_growth_steps {
             self.logged_growth_steps = steps;
             log::info!(
@@ -129,13 +200,14 @@ impl WebApp {
             );
         }
         // a job's frames are counted from its start, and reported at its end
-        let running = self.app.running_job().is_some();
+        let running = app.running_job().is_some();
         let ended = self.job_was_running && !running;
         if running && !self.job_was_running {
-            self.app.frame_stats.clear();
+            app.frame_stats.clear();
+            self.between.take_stats();
         }
         self.job_was_running = running;
-        let stats = self.app.frame_stats();
+        let stats = app.frame_stats();
         let now = Instant::now();
         if (now >= self.next_report || ended) && !stats.is_empty() {
             self.next_report = now + REPORT_EVERY;
@@ -148,6 +220,14 @@ impl WebApp {
                 stats.mean_solver() * 1e3,
                 stats.mean_interval() * 1e3
             );
+            let work = self.between.take_stats();
+            if work.tasks > 0 {
+                log::info!(
+                    "timing: between frames {} tasks, {:.0} ms of work",
+                    work.tasks,
+                    work.worked * 1e3
+                );
+            }
         }
     }
 }
@@ -163,20 +243,25 @@ impl eframe::App for WebApp {
     }
 
     fn logic(&mut self, ctx: &egui::Context, frame: &mut eframe::Frame) {
-        self.take_opened_files();
-        eframe::App::logic(&mut self.app, ctx, frame);
+        let mut app = self.app.borrow_mut();
+        Self::take_opened_files(&mut app);
+        eframe::App::logic(&mut *app, ctx, frame);
+        if app.running_job().is_some() {
+            self.between.start();
+        }
     }
 
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
-        eframe::App::ui(&mut self.app, ui, frame);
+        eframe::App::ui(&mut *self.app.borrow_mut(), ui, frame);
+        self.note_startup();
         self.log_timings();
         if self.test_hooks {
-            self.state_to_page();
+            self.state_to_page(f64::from(ui.ctx().zoom_factor()));
         }
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
-        eframe::App::save(&mut self.app, storage);
+        eframe::App::save(&mut *self.app.borrow_mut(), storage);
     }
 }
 
@@ -216,6 +301,20 @@ impl egui::Plugin for WidgetsToPage {
         }
         set_on_window("cdcaWidgets", &widgets);
     }
+}
+
+/// `{ x, y, w, h }` in CSS pixels of a rectangle in points.
+fn rect_to_page(r: egui::Rect, zoom: f64) -> js_sys::Object {
+    let o = js_sys::Object::new();
+    for (key, value) in [
+        ("x", r.min.x),
+        ("y", r.min.y),
+        ("w", r.width()),
+        ("h", r.height()),
+    ] {
+        let _ = js_sys::Reflect::set(&o, &key.into(), &(f64::from(value) * zoom).into());
+    }
+    o
 }
 
 fn set_on_window(key: &str, value: &JsValue) {

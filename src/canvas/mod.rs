@@ -82,6 +82,8 @@ pub struct Canvas {
     /// The key and the colour legend as last drawn.
     pub key_rect: Option<egui::Rect>,
     pub legend_rect: Option<egui::Rect>,
+    /// The load labels beside the traction arrows, as last drawn.
+    pub load_label_rects: Vec<egui::Rect>,
     mesh: Option<FieldMesh>,
     /// Pointer position in the specimen, m.
     pub hover_world: Option<[f64; 2]>,
@@ -315,6 +317,7 @@ impl Canvas {
         if s.show_mesh {
             symbols::paint_mesh_lines(painter, &view, scene);
         }
+        self.load_label_rects.clear();
         if s.show_loads {
             // the field shown is at λ times the scene's tractions: the
             // label gives the load of the field on screen (after a split
@@ -325,7 +328,7 @@ impl Canvas {
                 .map(|f| f.load_factor)
                 .or_else(|| (sol.solved || sol.live).then_some(sol.load_factor))
                 .filter(|l| (l - 1.0).abs() > 1e-9);
-            symbols::paint_boundary(painter, &view, scene, load_factor);
+            self.load_label_rects = symbols::paint_boundary(painter, &view, scene, load_factor);
         }
         // before a solve (or after an edit) the scene's own cracks, and
         // which of them are secondary from its saved lineage

@@ -123,13 +123,16 @@ fn sides(scene: &SceneFile) -> [Side; 4] {
 /// fixed symbols, point supports. `load_factor`: the factor λ on the
 /// scene's tractions of the field shown, when it is not 1 (growth under
 /// critical or load control); the labels then read "λ 1.706 × σ_n …".
+/// Returns the load labels' rectangles (the browser test checks that no
+/// key on the canvas covers another).
 pub fn paint_boundary(
     painter: &Painter,
     view: &ViewTransform,
     scene: &SceneFile,
     load_factor: Option<f64>,
-) {
+) -> Vec<egui::Rect> {
     let font = FontId::proportional(12.0);
+    let mut labels = Vec::new();
     for side in sides(scene) {
         let out = view.screen_vec(side.outward).normalized();
         let along = view
@@ -224,7 +227,7 @@ pub fn paint_boundary(
                     at_label.x.clamp(inner.left(), inner.right()),
                     at_label.y.clamp(inner.top(), inner.bottom()),
                 );
-                painter.text(at_label, align, label, font.clone(), LOAD_COLOR);
+                labels.push(painter.text(at_label, align, label, font.clone(), LOAD_COLOR));
             }
         }
     }
@@ -245,6 +248,7 @@ pub fn paint_boundary(
             SUPPORT_COLOR,
         );
     }
+    labels
 }
 
 /// The cracks as polylines, black, with the segments `secondary` marks

@@ -8,24 +8,37 @@
 // scene through the
 // file dialog. Fails on any console error, page error or panic message.
 //
-// Then, in a new page (a fresh profile, so the default scene again), it
-// presses Run growth and measures the frame times for up to RUN_GROWTH_MS
-// or until the run ends, as scripts/frame_times.sh does natively: the
+// Then, in a new page (a fresh profile) opened on the bundled stepped pair
+// (a shared link), it presses Run growth and measures the run's time and
+// its frame times until the run ends (at most RUN_GROWTH_MS), as
+// scripts/frame_times.sh does natively: the
 // intervals between requestAnimationFrame callbacks, i.e. the browser's
 // frame times (the app's logic and UI, tessellation, WebGL painting and
 // compositing; never less than one display refresh, 16.7 ms at 60 Hz). It
 // prints `browser frame times during Run growth: N frames, S growth steps;
-// mean X ms, p95 Y ms, max Z ms` and adds it to TIMINGS.txt; it fails if
-// no growth step is made. CDCA_RUN_GROWTH_MS=0 skips it.
+// mean X ms, p95 Y ms, max Z ms`, the run's steps and last λ and its
+// time, and adds them to TIMINGS.txt; it fails if no growth step is made.
+// CDCA_RUN_GROWTH_MS=0 skips it; CDCA_FRAMES_ONLY=1 runs the job in the
+// frames only (`?cdca_frames_only`, src/web.rs), as before the work
+// between frames (src/web_work.rs), to compare.
 //
 //   node tests/web/smoke.mjs URL SCREENSHOT.png [TIMINGS.txt]
 //
-// The page is opened with `?cdca_test`, which makes the app publish its
-// widgets (label and rectangle, from egui's AccessKit tree) as
-// `window.cdcaWidgets` and its state as `window.cdcaState` (src/web.rs).
-import { chromium } from "playwright-core";
+// (The browser, the page's test hooks and clicks by label: common.mjs.)
 import { readFileSync, writeFileSync } from "node:fs";
-import { deflateRawSync } from "node:zlib";
+import {
+    START_TIMEOUT_MS,
+    STEP_TIMEOUT_MS,
+    elapsed,
+    hooks,
+    launch,
+    log,
+    open as openAt,
+    problems,
+    sceneLink,
+    timings,
+    watch,
+} from "./common.mjs";
 
 const [url, screenshotPath, timingsPath] = process.argv.slice(2);
 if (!url || !screenshotPath) {
@@ -33,103 +46,20 @@ if (!url || !screenshotPath) {
     process.exit(2);
 }
 const GROW_CLICKS = 3;
-const START_TIMEOUT_MS = 180_000;
-const STEP_TIMEOUT_MS = 60_000;
-const RUN_GROWTH_MS = Number(process.env.CDCA_RUN_GROWTH_MS ?? 20_000);
+const RUN_GROWTH_MS = Number(process.env.CDCA_RUN_GROWTH_MS ?? 60_000);
+// The scene Run growth is timed on (issue 56, "No waiting": the bundled
+// stepped pair, grown to its end).
+const RUN_GROWTH_SCENE = "specimen_two_flaws_stepped.json";
+// Its targets: the whole run, and every frame (issue 56).
+const RUN_TARGET_S = 8;
+const FRAME_TARGET_MS = 100;
 // A frame longer than this is listed on its own (the page looks frozen).
 const FROZEN_MS = 200;
 
-const problems = [];
-const timings = [];
-const t0 = Date.now();
-const elapsed = () => `${((Date.now() - t0) / 1000).toFixed(1)} s`;
-const log = (msg) => console.log(`[${elapsed()}] ${msg}`);
+// Opens the app (with its test hooks) at this test's address.
+const open = (page, hash = "") => openAt(page, url, hash);
 
-// Console messages of a page: the app's timing lines are kept, everything
-// else is printed; errors and panic messages are problems.
-function watch(page, tag = "") {
-    page.on("console", (msg) => {
-        const text = msg.text();
-        if (text.startsWith("timing:") || text.includes(" timing: ")) {
-            timings.push(`[${elapsed()}] ${tag}${text}`);
-        } else {
-            log(`${tag}console.${msg.type()}: ${text.split("\n")[0]}`);
-        }
-        if (msg.type() === "error" || /panick?ed|\bpanic\b/i.test(text)) {
-            problems.push(`${tag}console.${msg.type()}: ${text}`);
-        }
-    });
-    page.on("pageerror", (e) => problems.push(`${tag}page error: ${e.message}`));
-    page.on("requestfailed", (r) => problems.push(`${tag}request failed: ${r.url()} ${r.failure()?.errorText}`));
-}
-
-// Opens the app with its test hooks (`?cdca_test`) and waits until it has
-// started.
-async function open(page, hash = "") {
-    const sep = url.includes("?") ? "&" : "?";
-    log(`open ${url}${sep}cdca_test${hash.slice(0, 40)}${hash.length > 40 ? "…" : ""}`);
-    await page.goto(`${url}${sep}cdca_test${hash}`);
-    await page.waitForSelector("#cdca_canvas");
-
-    // Started, or a visible failure message?
-    await page.waitForFunction(
-        () => ["hidden", "error"].includes(document.getElementById("cdca_status")?.className),
-        null,
-        { timeout: START_TIMEOUT_MS },
-    );
-    const status = await page.$eval("#cdca_status", (e) => [e.className, e.textContent]);
-    if (status[0] === "error") {
-        throw new Error(`the page shows a start failure: ${status[1]}`);
-    }
-    log("app started");
-}
-
-// The app's state (src/web.rs), waiting on it, and clicks by label.
-function hooks(page) {
-    const state = () => page.evaluate(() => window.cdcaState);
-    const waitState = (pred, what, timeout = STEP_TIMEOUT_MS, arg = null) =>
-        page
-            .waitForFunction(pred, arg, { timeout, polling: 100 })
-            .catch(async (e) => {
-                throw new Error(`${what}: ${e.message}; state ${JSON.stringify(await state())}`);
-            });
-
-    // Clicks a widget by its label, like the egui_kittest tests natively.
-    async function click(label) {
-        const handle = await page.waitForFunction(
-            (label) => (window.cdcaWidgets || []).find((w) => w.label === label && !w.disabled),
-            label,
-            { timeout: STEP_TIMEOUT_MS, polling: 100 },
-        );
-        const w = await handle.jsonValue();
-        const x = w.x + w.w / 2;
-        const y = w.y + w.h / 2;
-        await page.mouse.move(x, y);
-        await page.mouse.down();
-        await page.waitForTimeout(50);
-        await page.mouse.up();
-        log(`clicked "${label}" at (${x.toFixed(0)}, ${y.toFixed(0)})`);
-    }
-    // Moves the pointer off the buttons so no tooltip covers the screenshot.
-    const park = () => page.mouse.move(1398, 898);
-    return { state, waitState, click, park };
-}
-
-// playwright gives the browser a new temporary profile of its own.
-const browser = await chromium.launch({
-    executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
-    headless: true,
-    args: [
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-quic",
-        "--no-first-run",
-        "--disable-background-networking",
-        "--disable-component-update",
-        "--disable-sync",
-        "--enable-unsafe-swiftshader",
-    ],
-});
+const browser = await launch();
 
 try {
     const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
@@ -283,10 +213,10 @@ try {
 }
 
 async function sharedLinks() {
-    const file = new URL("../../assets/scenes/specimen_two_flaws_stepped.json", import.meta.url);
-    const scene = JSON.parse(readFileSync(file, "utf8"));
-    scene.name = "Linked scene for the class";
-    const fragment = "scene=" + deflateRawSync(Buffer.from(JSON.stringify(scene))).toString("base64url");
+    const fragment = sceneLink("specimen_two_flaws_stepped.json", (scene) => ({
+        ...scene,
+        name: "Linked scene for the class",
+    }));
     const cases = [
         // (the predicates run in the page)
         ["a shared link", fragment, () => window.cdcaState?.sceneName === "Linked scene for the class" && window.cdcaState?.solved],
@@ -327,11 +257,14 @@ async function runGrowthFrameTimes() {
     const tag = "[run growth] ";
     const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
     watch(page, tag);
-    await open(page);
+    // CDCA_FRAMES_ONLY=1: the solver in the frames only (src/web.rs), to
+    // measure what the idle time gains
+    const query = process.env.CDCA_FRAMES_ONLY === "1" ? "?cdca_frames_only" : "";
+    await openAt(page, url + query, `#${sceneLink(RUN_GROWTH_SCENE)}`);
     const { state, waitState, click, park } = hooks(page);
     await waitState(
         () => window.cdcaState?.solved && window.cdcaState.fieldShown && window.cdcaState.runMode === "Paused",
-        "the default scene is solved and its field shown",
+        `${RUN_GROWTH_SCENE} is solved and its field shown`,
         START_TIMEOUT_MS,
     );
     const before = await state();
@@ -411,16 +344,29 @@ async function runGrowthFrameTimes() {
     // The app's own view (src/web.rs): CPU time of logic + UI per frame over
     // its last 240 frames, logged every 2 s.
     const cpu = timings.filter((l) => l.includes(`${tag}`) && l.includes("timing: frames")).pop();
+    // and its work between frames (src/web_work.rs), summed over its reports
+    const between = timings
+        .filter((l) => l.includes(`${tag}`) && l.includes("timing: between frames"))
+        .map((l) => /between frames (\d+) tasks, (\d+) ms/.exec(l))
+        .reduce(([n, ms], m) => [n + Number(m?.[1] ?? 0), ms + Number(m?.[2] ?? 0)], [0, 0]);
     const summary =
         `browser frame times during Run growth: ${n} frames, ${steps} growth steps; ` +
         `mean ${mean.toFixed(1)} ms, p95 ${p95.toFixed(1)} ms, max ${max.toFixed(1)} ms`;
     const details = [
-        `  (requestAnimationFrame intervals; start frame ${startFrame.toFixed(0)} ms not counted; ` +
-            `${(t / 1000).toFixed(1)} s, stopped: ${rec.why})`,
+        `  (${RUN_GROWTH_SCENE}${query}: ${after.growthSteps} growth steps, last λ ${after.loadFactor}, ` +
+            `run ${(t / 1000).toFixed(1)} s from the click's frame; stopped: ${rec.why})`,
+        `  (requestAnimationFrame intervals; start frame ${startFrame.toFixed(0)} ms not counted)`,
+        `  solver work between frames: ${between[0]} tasks, ${(between[1] / 1000).toFixed(1)} s`,
         `  frames over ${FROZEN_MS} ms: ${frozen.length} of ${n + 1}` +
             (frozen.length ? `; longest ${longest.join(", ")}` : ""),
         `  app CPU per frame (last report): ${cpu ? cpu.replace(/^.*timing: /, "") : "none"}` +
             appBudget(cpu),
+        // issue 56's targets, reported, not asserted: software painting and
+        // the solver's speed in WebAssembly keep them out of reach here
+        // (docs/browser.md, "Run growth between frames")
+        `  targets: the run in ${(t / 1000).toFixed(1)} s (at most ${RUN_TARGET_S} s: ` +
+            `${t / 1000 <= RUN_TARGET_S ? "met" : "NOT met"}), longest frame ${max.toFixed(0)} ms ` +
+            `(under ${FRAME_TARGET_MS} ms: ${max < FRAME_TARGET_MS ? "met" : "NOT met"})`,
     ];
     if (steps <= 0) throw new Error(`no growth step in ${(t / 1000).toFixed(1)} s: ${summary}`);
     return [summary, ...details];

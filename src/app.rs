@@ -112,7 +112,8 @@ impl Default for Options {
             start_run: None,
             file_dialogs: true,
             time_run: false,
-            growth_thread: true,
+            // a browser has no threads
+            growth_thread: !crate::io::IN_BROWSER,
             plot: None,
         }
     }
@@ -170,7 +171,6 @@ pub struct WorkbenchApp {
     painted_once: bool,
     /// The first frame and the first field were reported (see
     /// `STARTUP_REPORT`).
-    #[cfg(not(target_arch = "wasm32"))]
     startup_reported: (bool, bool),
     /// The scene as last opened (the default file name says `_edited` once
     /// the scene differs from it).
@@ -238,7 +238,6 @@ impl WorkbenchApp {
             last_folder: None,
             replay_step: None,
             painted_once: false,
-            #[cfg(not(target_arch = "wasm32"))]
             startup_reported: (false, false),
             opened_scene,
             last_edited_crack: None,
@@ -1110,10 +1109,8 @@ fn fixed_width_scroll(ui: &mut Ui, id: &str, add_contents: impl FnOnce(&mut Ui))
 /// environment has `CDCA_STARTUP_REPORT` (scripts/first_frame.sh): the app
 /// then prints when its first frame and its first solved field were laid
 /// out, and closes once the field is shown.
-#[cfg(not(target_arch = "wasm32"))]
 pub static STARTUP_REPORT: std::sync::OnceLock<Instant> = std::sync::OnceLock::new();
 
-#[cfg(not(target_arch = "wasm32"))]
 impl WorkbenchApp {
     fn report_startup(&mut self, ctx: &egui::Context) {
         let Some(t0) = STARTUP_REPORT.get() else {
@@ -1139,7 +1136,6 @@ impl eframe::App for WorkbenchApp {
 
     fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
         WorkbenchApp::ui(self, ui);
-        #[cfg(not(target_arch = "wasm32"))]
         self.report_startup(ui.ctx());
     }
 

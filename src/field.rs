@@ -199,7 +199,6 @@ impl FieldSampler {
 
     /// The field `key` of `sim`'s current iterate, sampled whole (on the
     /// growth thread, which owns the simulation).
-    #[cfg(not(target_arch = "wasm32"))]
     pub fn sampled(sim: &Simulation, key: FieldKey) -> FieldSamples {
         let mut s = Self::default();
         let far = Instant::now() + web_time::Duration::from_hours(1);

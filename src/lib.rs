@@ -14,7 +14,6 @@ mod field;
 mod figure;
 mod figures;
 mod frame_stats;
-#[cfg(not(target_arch = "wasm32"))]
 mod grower;
 mod io;
 pub mod job;

@@ -9,7 +9,6 @@ use cdca::{CriterionCurve, Scene, Simulation, SolveError};
 use web_time::Instant;
 
 use crate::field::{FieldKey, FieldSampler, FieldSamples, LIVE_FIELD_INTERVAL};
-#[cfg(not(target_arch = "wasm32"))]
 use crate::grower::{Grower, Update};
 use crate::pacer::Pacer;
 use crate::replay::Replay;
@@ -98,17 +97,14 @@ pub struct Runner {
     /// extended.
     show_now: bool,
     /// The field the canvas wants ([`want_field`](Self::want_field)).
-    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
     field_wanted: Option<FieldKey>,
     /// Natively, the growth thread while it has the simulation (`sim` is
     /// then `None` and `run` a copy of the run it advances).
-    #[cfg(not(target_arch = "wasm32"))]
     grower: Option<Grower>,
-    /// Natively, growth runs on a thread (`Grower`).
-    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
+    /// Growth runs on a thread (`Grower`): natively (in a browser there
+    /// is none, `io::IN_BROWSER`).
     growth_thread: bool,
     /// Repaints the UI when the growth thread has an update.
-    #[cfg(not(target_arch = "wasm32"))]
     waker: Option<egui::Context>,
     /// Each tip's criterion curve, from the growth thread's last solved
     /// update (the inspector's curve while the thread has the simulation).
@@ -160,10 +156,8 @@ impl Default for Runner {
             field_moved_at: None,
             show_now: false,
             field_wanted: None,
-            #[cfg(not(target_arch = "wasm32"))]
             grower: None,
             growth_thread: true,
-            #[cfg(not(target_arch = "wasm32"))]
             waker: None,
             curves: Vec::new(),
             ended_error: None,
@@ -227,7 +221,6 @@ impl Runner {
     /// The scene simulated (the growth thread's while it has the
     /// simulation).
     pub fn scene(&self) -> Option<&Scene> {
-        #[cfg(not(target_arch = "wasm32"))]
         if let Some(g) = &self.grower {
             return Some(g.scene());
         }
@@ -253,7 +246,6 @@ impl Runner {
     /// step's load.
     pub fn want_field(&mut self, key: Option<FieldKey>) {
         self.field_wanted = key;
-        #[cfg(not(target_arch = "wasm32"))]
         if let Some(g) = &self.grower {
             g.want_field(key);
         }
@@ -341,7 +333,6 @@ impl Runner {
     /// The solver growth uses (or will use) on this simulation, or on a
     /// simulation of `scene` when none is built yet.
     pub fn growth_solver_kind(&self, scene: &SceneFile) -> SolverKind {
-        #[cfg(not(target_arch = "wasm32"))]
         if let Some(g) = &self.grower {
             return g.scene().solver.kind;
         }
@@ -783,7 +774,6 @@ impl<'a> FieldTask<'a> {
 impl Task for FieldTask<'_> {
     fn advance(&mut self, deadline: Instant) -> Result<Progress, String> {
         let r = &mut *self.runner;
-        #[cfg(not(target_arch = "wasm32"))]
         if r.grower.is_some() {
             // the growth thread samples it (`want_field`)
             return Ok(Progress::Finished);
@@ -869,7 +859,6 @@ impl Task for Runner {
         if self.second_start.is_some() {
             return Ok(self.advance_second_start(deadline));
         }
-        #[cfg(not(target_arch = "wasm32"))]
         if let Some(progress) = self.advance_thread() {
             return progress;
         }
@@ -954,7 +943,6 @@ impl Runner {
 }
 
 /// Natively, growth on a thread of its own ([`Grower`]).
-#[cfg(not(target_arch = "wasm32"))]
 impl Runner {
     /// Growth goes to the thread: a growth run without a fixed pace (a
     /// pace set by the user is watched a call per frame, as in the
@@ -1042,22 +1030,12 @@ impl Runner {
 impl Runner {
     /// The growth thread has the simulation: the UI need not repaint but
     /// when it sends an update (it repaints the UI through `waker`, the
-    /// app's context). (In a browser there is no thread and no `self` to
-    /// read.)
-    #[cfg_attr(target_arch = "wasm32", allow(clippy::unused_self))]
+    /// app's context).
     pub fn grows_on_thread(&mut self, waker: &egui::Context) -> bool {
-        #[cfg(not(target_arch = "wasm32"))]
-        {
-            if self.waker.is_none() {
-                self.waker = Some(waker.clone());
-            }
-            self.grower.is_some()
+        if self.waker.is_none() {
+            self.waker = Some(waker.clone());
         }
-        #[cfg(target_arch = "wasm32")]
-        {
-            let _ = waker;
-            false
-        }
+        self.grower.is_some()
     }
 
     /// Natively, takes the simulation back from the growth thread, if it
@@ -1065,9 +1043,7 @@ impl Runner {
     /// the run stands where the thread stopped and goes on at the next
     /// frame unless changed. Its error, if it ended in one, is kept for
     /// [`take_error`](Self::take_error). Nothing in a browser.
-    #[cfg_attr(target_arch = "wasm32", allow(clippy::unused_self))]
     pub fn park(&mut self) {
-        #[cfg(not(target_arch = "wasm32"))]
         if let Some(Err(e)) = self.take_back() {
             self.ended_error = Some(e);
         }

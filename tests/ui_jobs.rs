@@ -1034,13 +1034,16 @@ fn undo_brings_back_what_reset_open_and_a_new_study_replaced() {
     the_run_is_back(h.state(), "Open");
 
     run_study(&mut h, 0.2, 0.6, 3);
-    let first = h.state().study().map(|s| s.to_csv());
+    let first = h.state().study().map(cdca_workbench::study::Study::to_csv);
     run_study(&mut h, 0.1, 0.3, 2);
-    assert_ne!(h.state().study().map(|s| s.to_csv()), first);
+    assert_ne!(
+        h.state().study().map(cdca_workbench::study::Study::to_csv),
+        first
+    );
     h.get_by_label("Undo").click();
     h.run_steps(3);
     assert_eq!(
-        h.state().study().map(|s| s.to_csv()),
+        h.state().study().map(cdca_workbench::study::Study::to_csv),
         first,
         "the first study is back"
     );

@@ -49,6 +49,18 @@ const PIECE: Duration = Duration::from_millis(12);
 /// took 2.7 times as long as `cdca grow`.)
 const UPDATE_INTERVAL: Duration = Duration::from_millis(100);
 
+/// The least time between two UI frames while the thread grows and no
+/// input comes (`WorkbenchApp::calm_frames`).
+pub const CALM_FRAME: Duration = Duration::from_millis(100);
+
+/// Waits, on the UI thread, until [`CALM_FRAME`] after `last` (when its
+/// last frame began).
+pub fn wait_for_calm(last: Instant) {
+    if let Some(left) = CALM_FRAME.checked_sub(last.elapsed()) {
+        std::thread::sleep(left);
+    }
+}
+
 /// What the UI shows after a piece of the run.
 pub struct Update {
     pub view: SolutionView,

@@ -48,8 +48,9 @@ if (!url || !screenshotPath) {
 const GROW_CLICKS = 3;
 const RUN_GROWTH_MS = Number(process.env.CDCA_RUN_GROWTH_MS ?? 60_000);
 // The scene Run growth is timed on (issue 56, "No waiting": the bundled
-// stepped pair, grown to its end).
-const RUN_GROWTH_SCENE = "specimen_two_flaws_stepped.json";
+// stepped pair, grown to its end; CDCA_RUN_GROWTH_SCENE names another
+// bundled scene file, e.g. specimen_single_flaw.json, the default).
+const RUN_GROWTH_SCENE = process.env.CDCA_RUN_GROWTH_SCENE ?? "specimen_two_flaws_stepped.json";
 // Its targets: the whole run, and every frame (issue 56).
 const RUN_TARGET_S = 8;
 const FRAME_TARGET_MS = 100;

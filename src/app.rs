@@ -674,6 +674,8 @@ impl WorkbenchApp {
             self.frame_solver_seconds = 0.0;
             return;
         }
+        // long growth calls wait for the work between frames, if it runs
+        self.runner.leave_long_calls(self.works_between_frames);
         self.advance_tasks(deadline);
         self.frame_solver_seconds = start.elapsed().as_secs_f64();
     }
@@ -686,6 +688,7 @@ impl WorkbenchApp {
     /// job.
     pub fn advance_job_until(&mut self, deadline: Instant) {
         if self.running_job().is_some() {
+            self.runner.leave_long_calls(false);
             self.advance_tasks(deadline);
         }
     }

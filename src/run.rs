@@ -139,6 +139,12 @@ impl Growth {
     ) -> Result<Slice, SolveError> {
         let mut status = None;
         loop {
+            if !pacer.may_start(deadline) {
+                return Ok(Slice {
+                    progress: Progress::Working,
+                    status,
+                });
+            }
             let start = Instant::now();
             let n = pacer.sweeps();
             if self.final_solve {

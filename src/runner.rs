@@ -713,6 +713,13 @@ impl Runner {
         self.pacer.set_fixed(pace);
     }
 
+    /// In a browser's frames while the job also works between frames: a
+    /// growth call that would overrun the frame waits for that work
+    /// ([`Pacer::set_leave_long`]).
+    pub fn leave_long_calls(&mut self, on: bool) {
+        self.pacer.set_leave_long(on);
+    }
+
     /// Growth with the automaton runs its multigrid-accelerated form (from
     /// the next growth run).
     pub fn set_accelerate_growth(&mut self, on: bool) {

@@ -114,9 +114,7 @@ impl WorkbenchApp {
                     match self.runner.solve() {
                         Ok(kept) if grown => {
                             // Undo brings the run back as it ended
-                            let mut present = self.present(false, false);
-                            present.run = kept.map(Box::new);
-                            self.undo.record(|| present, false);
+                            self.record_run(kept);
                             // a grown scene resumes at its last step's load
                             let lambda = self.runner.view().load_factor;
                             self.message = Some(Message::Info(format!(
@@ -191,11 +189,8 @@ impl WorkbenchApp {
             Command::Pause => self.runner.pause(),
             Command::Reset => {
                 // Undo brings back the run on screen
-                if let Some(run) = self.runner.take_run() {
-                    let mut present = self.present(false, false);
-                    present.run = Some(Box::new(run));
-                    self.undo.record(|| present, false);
-                }
+                let run = self.runner.take_run();
+                self.record_run(run);
                 let valid = self.runner.invalidate(&self.scene);
                 self.show_validity(valid);
                 self.auto_solve();

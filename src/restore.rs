@@ -4,6 +4,7 @@
 //! record what they replace, so one Undo brings it back as it was.
 
 use crate::app::WorkbenchApp;
+use crate::runner::KeptRun;
 use crate::undo::Entry;
 use crate::view::Message;
 
@@ -37,6 +38,16 @@ impl WorkbenchApp {
                 .is_some_and(crate::study::Study::finished);
         let present = self.present(run, study);
         self.undo.record(|| present, false);
+    }
+
+    /// Records `run` (a run an action took off the screen), if any, with
+    /// the present scene: one undo step.
+    pub(crate) fn record_run(&mut self, run: Option<KeptRun>) {
+        if let Some(run) = run {
+            let mut present = self.present(false, false);
+            present.run = Some(Box::new(run));
+            self.undo.record(|| present, false);
+        }
     }
 
     pub(crate) fn undo(&mut self) {

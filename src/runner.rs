@@ -552,8 +552,10 @@ impl Runner {
     /// on the same scene ([`fresh_start`](Self::fresh_start)), so that its
     /// contact states and K do not depend on what ran before.
     ///
-    /// After growth, the grown scene is solved on a simulation of its own,
-    /// and the run's simulation is returned, as it was on screen, for Undo.
+    /// After growth, the grown scene is solved on a simulation of its own
+    /// (its discretisation built anew: the run's cannot be both reused and
+    /// kept), and the run's simulation is returned, as it was on screen,
+    /// for Undo.
     pub fn solve(&mut self) -> Result<Option<KeptRun>, String> {
         self.park();
         let kept = self.fresh_start()?;

@@ -1349,9 +1349,7 @@ fn grown_default() -> Harness<'static, WorkbenchApp> {
 /// A growth step's report without its wall time, as JSON (the floats
 /// round-trip exactly): equal strings are bitwise-equal reports.
 fn step_bits(step: &cdca::report::GrowthStepReport) -> String {
-    let mut step = step.clone();
-    step.seconds = 0.0;
-    serde_json::to_string(&step).unwrap_or_default()
+    serde_json::to_string(&step.untimed()).unwrap_or_default()
 }
 
 /// Run growth on the default scene to its end (unstable: the intact rock

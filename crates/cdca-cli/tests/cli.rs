@@ -292,6 +292,46 @@ fn bad_scenes_are_rejected_by_validate_solve_and_grow_alike() {
     }
 }
 
+/// Issue 62: the bundled coplanar pair in a rock of 1 Pa cohesion (and
+/// 0.5 Pa, 1e-12 Pa) on 50 × 50 was valid, and its growth aborted the
+/// process (allocating 1.6e16 bytes for the intact rock's site stencil,
+/// exit 134) or panicked ("capacity overflow", exit 101): its process
+/// zone r_p = (K_IC/σ_t)²/2π is 3.0e11 m. Now validate, solve and grow
+/// refuse it before any work, naming the cohesion, σ_t and r_p.
+#[test]
+fn a_rock_whose_process_zone_outgrows_the_specimen_is_refused() {
+    let dir = temp_dir("tiny-cohesion");
+    let text = std::fs::read_to_string(scenes_dir().join("specimen_two_flaws_coplanar.json"))
+        .expect("bundled pair");
+    for (cohesion, written, r_p) in [
+        (1.0, "1", "3.020e11 m"),
+        (0.5, "0.5", "1.208e12 m"),
+        (1e-12, "1e-12", "3.020e35 m"),
+    ] {
+        let mut scene: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+        scene["material"]["cohesion"] = cohesion.into();
+        scene["mesh"] = serde_json::json!({ "nx": 50, "ny": 50 });
+        let path = dir.join("rock.json");
+        std::fs::write(&path, scene.to_string()).expect("write scene");
+        for command in ["validate", "solve", "grow"] {
+            let run = cdca(&[command, path_str(&path)]);
+            let what = format!("{command}, cohesion {cohesion} Pa");
+            assert_rejected(&run, 2, &format!("`material.cohesion` = {written}:"), &what);
+            assert!(
+                run.stderr
+                    .contains(&format!("r_p = (K_IC/σ_t)²/2π = {r_p}")),
+                "{what}: {}",
+                run.stderr
+            );
+            assert!(
+                run.stderr.contains("shorter side 0.03 m"),
+                "{what}: {}",
+                run.stderr
+            );
+        }
+    }
+}
+
 #[test]
 fn messages_name_the_value_too() {
     let dir = temp_dir("value");

@@ -33,6 +33,39 @@ pub struct SolveReport {
     /// the same, or was not run; `cdca solve` runs it where faces close).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub other_solution: Option<OtherSolutionReport>,
+    /// What the solve cost and where its time went.
+    #[serde(default)]
+    pub work: WorkReport,
+}
+
+/// What a solve, or a growth step with its λ_cr search's trials, cost:
+/// its solves and iterations, and where its wall time went. The seconds
+/// add up to the whole (`seconds` of a growth step; `solver.seconds` and
+/// the build and evaluation around it for a solve).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct WorkReport {
+    /// Contact solves run to their end (a trial load the search scaled
+    /// instead is not one).
+    pub solves: usize,
+    /// Contact iterations summed over them.
+    pub contact_iterations: usize,
+    /// Linear iterations summed over them (the direct solver: solves
+    /// through a factor, its Newton steps' Krylov iterations included).
+    pub linear_iterations: usize,
+    /// Solves whose Newton steps cycled or missed, finished by the damped
+    /// fixed point (`contact::iteration::MAX_NEWTON_STEPS`).
+    pub newton_fallbacks: usize,
+    /// Integrating the elements a growth changed, the direct solver's
+    /// pattern and symbolic factorisation, the tips' integral domains, s.
+    pub build_seconds: f64,
+    /// The contact solves (factorisations, solves, contact iterations), s.
+    pub solve_seconds: f64,
+    /// Evaluating the tips, kinks and the intact rock's sites after each
+    /// solve, s.
+    pub evaluate_seconds: f64,
+    /// The rest: the λ_cr search's bookkeeping, extending the cracks and
+    /// rebuilding the discretisation, s.
+    pub other_seconds: f64,
 }
 
 /// Largest difference of a tip's K_I or K_II, over the largest |K| of a
@@ -579,10 +612,33 @@ pub struct GrowthStepReport {
     /// Cracks started in the intact rock in this step (left out when none).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub nucleated: Vec<NucleatedCrack>,
+    /// What the step cost, its λ_cr search's trials included, and where
+    /// its `seconds` went.
+    #[serde(default)]
+    pub work: WorkReport,
     /// The intact rock's most critical site at this step's load (left out
     /// under `growth.intact_rock = "ignore"` and where no site is left).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rock_site: Option<RockSiteReport>,
+}
+
+impl GrowthStepReport {
+    /// The report without its times (`seconds`, and the seconds of
+    /// `work`): what two runs of the same step must agree on to the bit.
+    #[must_use]
+    pub fn untimed(&self) -> Self {
+        Self {
+            seconds: 0.0,
+            work: WorkReport {
+                build_seconds: 0.0,
+                solve_seconds: 0.0,
+                evaluate_seconds: 0.0,
+                other_seconds: 0.0,
+                ..self.work.clone()
+            },
+            ..self.clone()
+        }
+    }
 }
 
 /// A tip that grew in a step: its new position and how it grew.

@@ -1,10 +1,18 @@
 //! The paper's model (`growth.intact_rock = "ignore"`) is unchanged by the
 //! intact rock's (issue 53): every bundled scene grown to its end under
 //! `"ignore"` prints every report field that `cdca grow` printed at
-//! 5091d41, the commit before the intact rock could fail, to the last bit
-//! (`seconds` aside; fields added since are not compared). The golden
-//! reports are `tests/golden/NAME.json.deflate`: that commit's `cdca grow`
-//! output with `seconds` removed, raw-deflated.
+//! 5091d41, the commit before the intact rock could fail, real numbers to
+//! [`GOLDEN_TOLERANCE`] (to the last bit until the contact iteration took
+//! Newton steps, issue 61) and all else exactly (`seconds` aside; fields
+//! added since, and the solvers' effort, [`EFFORT`], are not compared).
+//! The golden reports are
+//! `tests/golden/NAME.json.deflate`: that commit's `cdca grow` output with
+//! `seconds` removed, raw-deflated; two were recorded again with the
+//! Newton steps, which found another solution of their frictional
+//! problem at one step (docs/model-log.md, issue 61):
+//! `closed_crack_biaxial` (step 4: one face point at the tip slipping
+//! where it was open) and `plate_45_biaxial_k0.1_mu0.5` (its last step,
+//! 41: 6 points stuck where 24 were).
 
 use std::path::PathBuf;
 
@@ -12,20 +20,45 @@ use cdca::scene::IntactRock;
 use cdca::{Scene, Simulation};
 use serde_json::Value;
 
+/// Relative difference within which a real number of a report is the
+/// golden one: the contact iteration's answer is the same to its
+/// tolerance (1e-8), not to the last bit, since its Newton steps (issue
+/// 61) reach it by another path; through the tips' integrals and the
+/// criterion the reports moved by up to 2e-7 (counts, states and strings
+/// are compared exactly).
+const GOLDEN_TOLERANCE: f64 = 1e-6;
+
+/// Fields that say how the solvers got to the answer, not what it is:
+/// their iterations and final residuals (the Newton steps take fewer
+/// contact iterations, count their Krylov solves, and stop at another
+/// residual below the same tolerance).
+const EFFORT: [&str; 3] = ["solver_iterations", "iterations", "residual"];
+
 /// The first place where `golden` is not held by `now` (a field of
 /// `golden` missing or different; a list of another length), as a path
 /// and the two values, or `None`.
 fn first_difference(golden: &Value, now: &Value, path: &str) -> Option<String> {
     match (golden, now) {
-        (Value::Object(g), Value::Object(n)) => g.iter().find_map(|(k, v)| match n.get(k) {
-            Some(w) => first_difference(v, w, &format!("{path}.{k}")),
-            None => Some(format!("{path}.{k}: missing (was {v})")),
-        }),
+        (Value::Object(g), Value::Object(n)) => g
+            .iter()
+            .filter(|(k, _)| !EFFORT.contains(&k.as_str()))
+            .find_map(|(k, v)| match n.get(k) {
+                Some(w) => first_difference(v, w, &format!("{path}.{k}")),
+                None => Some(format!("{path}.{k}: missing (was {v})")),
+            }),
         (Value::Array(g), Value::Array(n)) if g.len() == n.len() => g
             .iter()
             .zip(n)
             .enumerate()
             .find_map(|(i, (v, w))| first_difference(v, w, &format!("{path}[{i}]"))),
+        (Value::Number(g), Value::Number(n)) if g.is_f64() && n.is_f64() => {
+            let (a, b) = (
+                g.as_f64().unwrap_or(f64::NAN),
+                n.as_f64().unwrap_or(f64::NAN),
+            );
+            ((a - b).abs() > GOLDEN_TOLERANCE * a.abs().max(b.abs()))
+                .then(|| format!("{path}: {now} (was {golden})"))
+        }
         _ if golden == now => None,
         _ => Some(format!("{path}: {now} (was {golden})")),
     }

@@ -1309,7 +1309,11 @@ fn a_trial_without_face_cohesion_is_the_last_solve_scaled() {
 /// last assertion says so. (The layout that exercised it before, layout 2
 /// of the same seed, settles warm since a tip's interaction-integral
 /// domain stops short of a kink; it had stalled since the face pieces next
-/// to a tip got the graded rule.)
+/// to a tip got the graded rule.) Since the contact iteration takes Newton
+/// steps (issue 61) the warm start settles there in 18 contact
+/// iterations; with `solver.max_contact_iterations` at 16 it does not,
+/// and the cold start converges within them (with 12–15 one trial
+/// converges neither way and is stepped around; from 18 none is retried).
 #[test]
 fn a_trial_that_does_not_settle_from_its_warm_start_is_solved_cold() {
     let sim = grown_layout(
@@ -1321,7 +1325,7 @@ fn a_trial_that_does_not_settle_from_its_warm_start_is_solved_cold() {
             0.8,
             15e6,
         )],
-        None,
+        Some(16),
     );
     let history = sim.history();
     let retried: Vec<(usize, Vec<f64>)> = history

@@ -431,3 +431,74 @@ fn a_flaw_with_early_wings_still_grows_them_first() {
         "both first steps tension wings, no start",
     );
 }
+
+/// Issue 62: the bundled stepped pair scaled to 300 mm on 150 × 150
+/// (`tests/scenes/stepped_pair_300mm.json`, h = 2 mm, r0 = 1.34 mm) grew
+/// 111 steps and then stopped with "stiffness matrix is not positive
+/// definite": from step 106 a shear start at a site 1.6 mm from a flaw
+/// (beyond r0, within the one element at which a start's ends join a
+/// crack) had both ends joined to the flaw and lay on it, six steps in a
+/// row, until the coincident Heaviside enrichments made the stiffness
+/// singular. No site now lies within `max(r0, h)` of a crack: the run goes
+/// to its step cap (200) with every step converged, and no crack started
+/// in the rock lies along another (not every one of eleven points along
+/// it within 0.05 h of one other crack). About 3 minutes (171 s) in release on one
+/// core, so it runs on request: `cargo test --release -p cdca --test
+/// intact_rock -- --ignored`.
+#[test]
+#[ignore = "about 3 minutes"]
+fn the_300_mm_stepped_pair_runs_to_its_end_with_an_outcome() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../tests/scenes/stepped_pair_300mm.json"
+    );
+    let text = std::fs::read_to_string(path).expect("tests/scenes/stepped_pair_300mm.json");
+    let scene = cdca::Scene::from_json(&text).expect("valid");
+    let mut sim = Simulation::new(scene).expect("simulation");
+    let (report, failed) = sim.grow_to_end();
+    assert!(failed.is_none(), "{:?}", report.error);
+    assert_eq!(report.outcome, Outcome::MaxSteps);
+    assert_eq!(report.steps.len(), 200);
+    assert!(report.steps.iter().all(|s| s.converged));
+    // no crack started in the rock lies along another: of eleven points
+    // along each start as it was made, not all lie on any one other crack
+    let h = 0.3 / 150.0;
+    for s in &report.steps {
+        for n in &s.nucleated {
+            let [a, b] = n.ends;
+            let along: Vec<[f64; 2]> = (0..=10)
+                .map(|k| {
+                    let t = f64::from(k) / 10.0;
+                    [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]
+                })
+                .collect();
+            for (c, path) in report
+                .cracks
+                .iter()
+                .enumerate()
+                .filter(|&(c, _)| c != n.crack)
+            {
+                let on = along
+                    .iter()
+                    .filter(|&&p| {
+                        path.windows(2)
+                            .any(|seg| distance_to_segment(p, seg[0], seg[1]) < 0.05 * h)
+                    })
+                    .count();
+                assert!(
+                    on < along.len(),
+                    "step {}: start {} lies along crack {c}",
+                    s.step,
+                    n.crack
+                );
+            }
+        }
+    }
+}
+
+/// Distance from `p` to the segment `a`–`b`, m.
+fn distance_to_segment(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let t = (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
+}

@@ -20,7 +20,7 @@ use crate::geometry::cracks::Crack;
 use crate::geometry::plane::P2;
 
 /// State of a crack-face contact point.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ContactState {
     Open,

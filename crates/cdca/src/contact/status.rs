@@ -20,6 +20,10 @@ pub struct ContactParams {
     /// in-sweep rule; damped, and reported if the iteration does not
     /// settle, by [`ContactSolve`](crate::contact::iteration::ContactSolve)).
     pub max_flips: u32,
+    /// Semismooth Newton steps where the solver keeps a factor
+    /// ([`newton`](crate::contact::newton)); `false` keeps the damped
+    /// fixed point for every solver (the steps' reference in tests).
+    pub newton: bool,
 }
 
 impl ContactParams {
@@ -31,13 +35,14 @@ impl ContactParams {
 
 impl Default for ContactParams {
     /// The scene file's defaults (`solver.contact_tolerance`,
-    /// `solver.max_contact_iterations`), four flips.
+    /// `solver.max_contact_iterations`), four flips, Newton steps.
     fn default() -> Self {
         let s = SolverSpec::default();
         Self {
             tolerance: s.contact_tolerance,
             max_iterations: s.max_contact_iterations,
             max_flips: 4,
+            newton: true,
         }
     }
 }
@@ -78,6 +83,10 @@ pub struct ContactInfo {
     pub face_solves: usize,
     /// The last linear solve.
     pub last: LinearInfo,
+    /// The Newton steps (a solver with a factor) cycled or did not
+    /// converge within [`MAX_NEWTON_STEPS`](crate::contact::iteration::MAX_NEWTON_STEPS),
+    /// and the damped fixed point finished the solve.
+    pub newton_fallback: bool,
 }
 
 /// Where a contact iteration stands, the outer loop's ([`ContactSolve`](crate::contact::iteration::ContactSolve))

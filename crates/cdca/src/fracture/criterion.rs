@@ -182,17 +182,10 @@ impl CriterionParams {
     }
 }
 
-/// Tensile strength of the Mohr–Coulomb envelope with a tension cut-off at
-/// its apex tangent, `σ_t = 2c cos φ / (1 + sin φ)`, Pa: the uniaxial
-/// tension at which the Mohr circle `(σ_t, 0)` touches `τ = c + σ_n tan φ`.
-pub fn tension_cutoff(cohesion: f64, friction_angle: f64) -> f64 {
-    2.0 * cohesion * friction_angle.cos() / (1.0 + friction_angle.sin())
-}
-
 /// The circle radius r0 (m) and tensile strength σ_t (Pa). Each one left
 /// out follows from the other through `σ_t = K_IC / √(2π r0)`, so that in a
 /// pure mode-I field the tensile check is `K_I ≥ K_IC`; with neither given
-/// σ_t is the Mohr–Coulomb [`tension_cutoff`] of c and φ and
+/// σ_t is the Mohr–Coulomb [`tension_cutoff`](Material::tension_cutoff) of c and φ and
 /// `r0 = (K_IC/σ_t)² / 2π`, the size of the tip's process (plastic) zone
 /// (Irwin's estimate). Both given: used as they are.
 pub fn radius_and_strength(r0: Option<f64>, m: &Material) -> (f64, f64) {
@@ -202,7 +195,7 @@ pub fn radius_and_strength(r0: Option<f64>, m: &Material) -> (f64, f64) {
         (Some(r0), None) => (r0, m.k_ic / (2.0 * PI * r0).sqrt()),
         (None, Some(st)) => (radius(st), st),
         (None, None) => {
-            let st = tension_cutoff(m.cohesion, m.friction_angle_deg.to_radians());
+            let st = m.tension_cutoff();
             (radius(st), st)
         }
     }

@@ -6,7 +6,6 @@
 
 use crate::discretisation::field::Field;
 use crate::discretisation::xfem::Xfem;
-use crate::fracture::criterion::tension_cutoff;
 use crate::geometry::plane::P2;
 use crate::report::IntactRockReport;
 use crate::scene::Material;
@@ -36,7 +35,7 @@ impl RockStrength {
         let s = Self {
             ucs: 2.0 * c * phi.cos() / (1.0 - phi.sin()),
             n_phi: (1.0 + phi.sin()) / (1.0 - phi.sin()),
-            tensile: m.tensile_strength.unwrap_or_else(|| tension_cutoff(c, phi)),
+            tensile: m.tensile_strength.unwrap_or_else(|| m.tension_cutoff()),
             cohesion: c,
             friction_angle: phi,
         };

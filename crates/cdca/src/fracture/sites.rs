@@ -16,7 +16,9 @@
 //!
 //! No site where another rule reads, or where the reading means nothing
 //! ([`SiteGrid::new`]): within r0 of a crack's faces (the disc would reach
-//! across the crack) or of a point support (its reaction is a point
+//! across the crack), and within one element of them where r0 is shorter
+//! (a crack started there would be joined to the nearby one along its
+//! length, see [`Start::snap`]), or of a point support (its reaction is a point
 //! force), within twice its own circle's radius of a free tip or a sharp
 //! kink (their own circles read there: r0 at a kink, r0 or the short
 //! crack's `a/5π` at a tip, `CriterionParams::for_crack`), and on a piece
@@ -49,7 +51,8 @@ pub struct SiteGrid {
 
 impl SiteGrid {
     /// The sites of the discretisation `xfem` for a disc of radius `r0`:
-    /// every element whose centre lies at least `r0` from every crack and
+    /// every element whose centre lies at least `max(r0, h)` from every
+    /// crack and
     /// outside every disc of `keep_out` (centre and radius, m: the free
     /// tips', the kinks' and the point supports'), on a piece of the
     /// specimen that holds a support: one with a standard DOF in `fixed`
@@ -76,9 +79,17 @@ impl SiteGrid {
                 }
             }
         };
+        // the distance at which a start's ends join a crack (`Start::snap`):
+        // nearer, a shear start along a crack had both ends snapped onto it
+        // and lay on it, six times over at one site, until the coincident
+        // Heaviside enrichments made the stiffness singular (issue 62: the
+        // 300 mm stepped pair at 150 × 150, r0 = 1.34 mm < h = 2 mm)
+        let faces = r0.max(mesh.h());
         for crack in cracks {
             for (a, b) in crack.segments() {
-                mark(a.inf(&b), a.sup(&b), r0, &|c| distance_to_segment(c, a, b));
+                mark(a.inf(&b), a.sup(&b), faces, &|c| {
+                    distance_to_segment(c, a, b)
+                });
             }
         }
         for &(p, radius) in keep_out {
@@ -89,8 +100,11 @@ impl SiteGrid {
             .filter(|&e| !excluded[e] && held[e])
             .map(|e| e as u32)
             .collect();
-        let rx = (r0 / mesh.hx).floor() as isize;
-        let ry = (r0 / mesh.hy).floor() as isize;
+        // a disc wider than the mesh reads every element: its rows stop at
+        // the mesh's size, so no radius sizes the stencil beyond the mesh
+        // (a 1 Pa rock's r0 of 10¹⁰ m once asked for 1.6e16 bytes)
+        let rx = (r0 / mesh.hx).floor().min(mesh.nx as f64) as isize;
+        let ry = (r0 / mesh.hy).floor().min(mesh.ny as f64) as isize;
         let rows = (-ry..=ry)
             .map(|dj| {
                 let dy = dj as f64 * mesh.hy;
@@ -291,7 +305,9 @@ pub struct Start {
     pub mode: Mode,
     pub half_length: f64,
     /// An end that comes within this distance of another crack ends on
-    /// it: the disc's radius r0, the finest ligament the reading resolves.
+    /// it: the disc's radius r0, the finest ligament the reading resolves,
+    /// or one element h where that is longer (no site lies nearer a crack,
+    /// so no start lies along one).
     pub snap: f64,
 }
 
@@ -509,6 +525,80 @@ mod tests {
             "no crack, no keep-out: every element a site"
         );
         (grid.read(&x, &u, &strength, 1.0), x.mesh.clone(), strength)
+    }
+
+    /// A disc far wider than the specimen (the r0 of 10¹⁰ m a 1 Pa rock
+    /// gave) reads every element: its stencil stops at the mesh (it once
+    /// asked for 1.6e16 bytes and aborted, issue 62), and every site reads
+    /// the mean of the whole plate, here of `σ_xx = 2b D₁₁ x`, linear in x:
+    /// its value at the centre, to round-off (1e-9).
+    #[test]
+    fn a_disc_wider_than_the_specimen_reads_the_whole_specimen() {
+        let n = 12;
+        let json = format!(
+            r#"{{"specimen":{{"width":0.01,"height":0.01}},"mesh":{{"nx":{n},"ny":{n}}},
+            "material":{{"young":20e9,"poisson":0.25}}}}"#
+        );
+        let scene = Scene::from_json(&json).expect("scene");
+        let model = Model::new(scene.clone());
+        let x = model.discretise(model.initial_cracks());
+        let b = 1e-2;
+        let mut u = vec![0.0; x.n_free()];
+        for node in 0..x.mesh.node_count() {
+            let f = x.dofs.std_free(node, 0);
+            if f != FIXED {
+                u[f as usize] = b * x.mesh.node_pos(node).x.powi(2);
+            }
+        }
+        let strength = RockStrength::of_material(&scene.material).expect("c > 0");
+        let grid = SiteGrid::new(&x, &model.fixed, &[], 1e10);
+        let readings = grid.read(&x, &u, &strength, 1.0);
+        assert_eq!(readings.sites.len(), n * n);
+        let mean = 2.0 * b * 20e9 / (1.0 - 0.25 * 0.25) * 0.005;
+        for s in &readings.sites {
+            let err = (s.stress[0] - mean).abs() / mean;
+            assert!(
+                err <= 1e-9,
+                "σ_xx {} against {mean} ({err:.1e})",
+                s.stress[0]
+            );
+        }
+    }
+
+    /// On a mesh coarser than the disc (h = 3 mm, r0 = 1.342 mm) no site
+    /// lies within one element of a crack: a start there has its ends
+    /// joined to the crack within `Start::snap = max(r0, h)` and lay along
+    /// it (issue 62: six coincident starts, then a singular stiffness).
+    /// A crack at y = 15.9 mm across the middle of a 30 mm plate on 10 × 10:
+    /// the row of centres at y = 13.5 mm, 2.4 mm below it (beyond r0,
+    /// within h), holds no site under it; every site is at least h from it.
+    #[test]
+    fn no_site_lies_within_one_element_of_a_crack() {
+        let json = r#"{"specimen":{"width":0.03,"height":0.03},"mesh":{"nx":10,"ny":10},
+            "material":{"young":20e9,"poisson":0.25},
+            "cracks":[{"points":[[0.0061,0.0159],[0.0239,0.0159]]}]}"#;
+        let scene = Scene::from_json(json).expect("scene");
+        let model = Model::new(scene);
+        let x = model.discretise(model.initial_cracks());
+        let h = x.mesh.h();
+        let r0 = 1.342e-3;
+        assert!(h > 2.0 * r0);
+        let grid = SiteGrid::new(&x, &model.fixed, &[], r0);
+        let (a, b) = (P2::new(0.0061, 0.0159), P2::new(0.0239, 0.0159));
+        for &e in &grid.sites {
+            let c = element_centre(&x.mesh, e as usize);
+            assert!(distance_to_segment(c, a, b) >= h, "site at {c:?}");
+        }
+        let below = x.mesh.element_at(P2::new(0.0151, 0.0135)).expect("inside");
+        assert!(!grid.sites.contains(&(below as u32)));
+        // the rows two elements away are sites along the whole crack
+        for i in 0..10 {
+            let e = x
+                .mesh
+                .element_at(P2::new(0.0015 + 0.003 * f64::from(i), 0.0105))
+                .expect("in");
+            assert!(grid.sites.contains(&(e as u32)), "element {e}");
+        }
     }
 
     fn reading_at(r: &Readings, mesh: &Mesh, at: P2) -> SiteReading {

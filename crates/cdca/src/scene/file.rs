@@ -102,6 +102,16 @@ pub struct Material {
     pub tensile_strength: Option<f64>,
 }
 
+impl Material {
+    /// Tensile strength of the Mohr–Coulomb envelope with a tension cut-off at
+    /// its apex tangent, `σ_t = 2c cos φ / (1 + sin φ)`, Pa: the uniaxial
+    /// tension at which the Mohr circle `(σ_t, 0)` touches `τ = c + σ_n tan φ`.
+    pub fn tension_cutoff(&self) -> f64 {
+        let phi = self.friction_angle_deg.to_radians();
+        2.0 * self.cohesion * phi.cos() / (1.0 + phi.sin())
+    }
+}
+
 /// Geometry of an arc crack: centre, radius, start and end angle (degrees,
 /// counter-clockwise from +x).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -90,6 +90,18 @@ impl SceneFile {
             (Some(points), None) => {
                 let name = |k: usize| field(&format!(".points[{k}]"));
                 self.validate_polyline(&field(".points"), points, name)?;
+                // a crack the saved run started (at a kink or in the rock)
+                // may run between two others, shorter than a drawn crack
+                // may be: it was valid where the run made it
+                let started = self
+                    .growth
+                    .resume
+                    .as_ref()
+                    .and_then(|r| r.lineage.get(i))
+                    .is_some_and(|l| l.drawn == 0);
+                if !started {
+                    self.resolved_span(&field(".points"), points)?;
+                }
             }
             (None, Some(arc)) => self.validate_arc(&field(".arc"), arc, crack)?,
             (points, _) => {
@@ -162,7 +174,12 @@ impl SceneFile {
         }
         let along = points.windows(2).all(|s| self.along_a_side(s[0], s[1]));
         let reason = "lies along the specimen's boundary: it cuts nothing";
-        ensure(!along, field, fmt_point(points[0]), reason)?;
+        ensure(!along, field, fmt_point(points[0]), reason)
+    }
+
+    /// A drawn crack's ends at least [`MIN_CRACK_SPAN`] element sizes
+    /// apart.
+    fn resolved_span(&self, field: &str, points: &[[f64; 2]]) -> Check {
         let h = self.element_size();
         let span = distance(points[0], points[points.len() - 1]);
         let reason = format!(
@@ -204,7 +221,8 @@ impl SceneFile {
         let reason = "the arc sweeps 360° or more (a closed crack cuts a piece free)";
         ensure(sweep < 360.0, &end, Num(arc.end_deg), reason)?;
         let polyline = crack.polyline(self.element_size());
-        self.validate_polyline(field, &polyline, |_| field.to_owned())
+        self.validate_polyline(field, &polyline, |_| field.to_owned())?;
+        self.resolved_span(field, &polyline)
     }
 
     fn validate_boundary(&self) -> Check {
@@ -245,6 +263,7 @@ impl SceneFile {
                 reason,
             )?;
         }
+        self.process_zone_fits()?;
         let g = &self.growth;
         if let Some(da) = g.increment {
             positive_quantity("growth.increment", da)?;
@@ -284,6 +303,44 @@ impl SceneFile {
             "solver.contact_update",
             s.contact_update.name(),
             format!("needs solver.kind \"automaton\" (it is \"{kind}\")"),
+        )
+    }
+
+    /// The process zone `r_p = (K_IC/σ_t)²/2π` of the rock's tensile
+    /// strength σ_t (the default criterion radius, half a tension start's
+    /// length in the intact rock) and a given `criterion.r0`, each within
+    /// the specimen's shorter side. A rock of 1 Pa cohesion has an r_p of
+    /// 3e11 m: its site stencil once asked for 1.6e16 bytes and aborted
+    /// the run (issue 62). σ_t is `material.tensile_strength` when given,
+    /// else the tension cut-off of c and φ (`material.cohesion` named; a
+    /// rock without cohesion starts no crack and has no cut-off).
+    fn process_zone_fits(&self) -> Check {
+        let m = &self.material;
+        let side = self.specimen.width.min(self.specimen.height);
+        let too_large = |what: &str, r: f64| {
+            format!(
+                "gives {what} {r:.3e} m, larger than the specimen's shorter side {} m: no \
+                 crack of this rock is resolved in this specimen (raise the strength, or \
+                 give criterion.r0 and material.tensile_strength)",
+                Num(side)
+            )
+        };
+        if let Some(r0) = self.criterion.r0 {
+            let reason = too_large("a criterion radius r0 =", r0);
+            ensure(r0 <= side, "criterion.r0", Num(r0), reason)?;
+        }
+        let (field, value, sigma_t) = match m.tensile_strength {
+            Some(st) => ("material.tensile_strength", st, st),
+            None if m.cohesion > 0.0 => ("material.cohesion", m.cohesion, m.tension_cutoff()),
+            None => return Ok(()),
+        };
+        let r_p = (m.k_ic / sigma_t).powi(2) / (2.0 * std::f64::consts::PI);
+        let what = format!("σ_t = {sigma_t:.3e} Pa and a process zone r_p = (K_IC/σ_t)²/2π =");
+        ensure(
+            r_p.is_finite() && r_p <= side,
+            field,
+            Num(value),
+            too_large(&what, r_p),
         )
     }
 
@@ -581,6 +638,13 @@ mod tests {
         ("boundary.right.shear", |s| s.boundary.right = Traction { normal: 0.0, shear: 5e9 }),
         ("criterion.r0", |s| s.criterion.r0 = Some(1e-31)),
         ("growth.increment", |s| s.growth.increment = Some(1e31)),
+        // process zones larger than the 0.3 m specimen (issue 62)
+        ("material.cohesion", |s| (s.material.cohesion, s.material.tensile_strength) = (1.0, None)),
+        ("material.cohesion", |s| (s.material.cohesion, s.material.tensile_strength) = (1e-12, None)),
+        ("material.tensile_strength", |s| s.material.tensile_strength = Some(1e3)),
+        ("criterion.r0", |s| (s.criterion.r0, s.material.tensile_strength) = (Some(0.31), None)),
+        ("material.cohesion", |s| (s.criterion.r0, s.material.tensile_strength, s.material.cohesion) = (Some(0.01), None, 1.0)),
+        ("criterion.r0", |s| s.criterion.r0 = Some(0.5)),
         ("boundary", |s| (s.boundary.left, s.boundary.points) = (SideBc::Free, vec![])),
         ("boundary", |s| (s.boundary.left, s.boundary.bottom) = (SideBc::Free, SideBc::Free)),
     ];

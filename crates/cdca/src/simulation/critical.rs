@@ -10,7 +10,7 @@ use super::search::{CriticalRun, MAX_UNSOLVED, Next, Search, Snapshot};
 use super::state::Simulation;
 use crate::contact::iteration::states_at_scaled_load;
 use crate::contact::law::FaceState;
-use crate::report::GrowthStepReport;
+use crate::report::{GrowthStepReport, WorkReport};
 
 impl Simulation {
     /// Largest utilisation over the free tips and the kinks of the last
@@ -40,6 +40,7 @@ impl Simulation {
         // every step starts from what the scene carries (`growth.resume`):
         // no displacement, the contact states as they are
         self.state.u.fill(0.0);
+        self.scratch.work = WorkReport::default();
         let first = warm.min(g.max_load_factor);
         self.scratch.critical = Some(CriticalRun {
             search: Search::new(g.max_load_factor),

@@ -17,7 +17,7 @@ use crate::geometry::cracks::{Crack, TipKind, classify_tips, split_specimen};
 use crate::geometry::plane::{P2, distance_to_segment};
 use crate::report::{
     ContactCounts, GrownTip, GrowthStepReport, KinkReport, LinkReport, Mode, NucleatedCrack,
-    Outcome, SolveReport, StartedCrack, TipReport,
+    Outcome, SolveReport, StartedCrack, TipReport, WorkReport,
 };
 use crate::scene::{CrackSpec, GrowthControl, Lineage, Resume, SolverKind};
 
@@ -122,6 +122,7 @@ impl Simulation {
             }
             let t = Instant::now();
             self.scratch.growth_start = Some(t);
+            self.scratch.work = WorkReport::default();
             t
         };
         if !(self.state.solved && self.scratch.job.is_none()) {
@@ -150,6 +151,14 @@ impl Simulation {
     /// ends the first solve). Returns whether nothing is left, i.e.
     /// whether a solve can start.
     pub(super) fn prepare_chunk(&mut self) -> Result<bool, SolveError> {
+        let clock = Instant::now();
+        let done = self.prepare_chunk_untimed();
+        self.scratch.work.build_seconds += clock.elapsed().as_secs_f64();
+        done
+    }
+
+    /// [`prepare_chunk`](Self::prepare_chunk), its time counted there.
+    fn prepare_chunk_untimed(&mut self) -> Result<bool, SolveError> {
         let x = &mut self.scratch.xfem;
         if !x.is_integrated() {
             x.integrate(INTEGRATION_CHUNK);
@@ -287,6 +296,10 @@ impl Simulation {
         }
         step.crack_length = self.state.cracks.iter().map(Crack::length).sum();
         step.seconds = trials.start.elapsed().as_secs_f64();
+        let mut work = std::mem::take(&mut self.scratch.work);
+        work.other_seconds =
+            step.seconds - work.build_seconds - work.solve_seconds - work.evaluate_seconds;
+        step.work = work;
         self.state.history.push(step.clone());
         self.state.scene.set_resume(self.resume(step.step));
         step

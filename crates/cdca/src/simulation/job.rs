@@ -9,9 +9,9 @@ use crate::contact::status::Reached;
 /// The solve in progress: how the contact states are updated.
 pub(super) enum Job {
     /// After each linear solve of the scene's solver.
-    Outer(ContactSolve),
+    Outer(Box<ContactSolve>),
     /// At the automaton's cell visits.
-    InSweep(InSweep),
+    InSweep(Box<InSweep>),
 }
 
 impl Job {

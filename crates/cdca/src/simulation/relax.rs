@@ -6,6 +6,8 @@
 //! without freezing a frame. [`Simulation::solve`] runs the same slices to
 //! the end.
 
+use web_time::Instant;
+
 use super::job::Job;
 use super::state::Simulation;
 use crate::contact::in_sweep::InSweep;
@@ -51,6 +53,22 @@ impl Simulation {
     /// with `converged: false`, its state is shown but growth does not go on
     /// from it. The tips are evaluated either way.
     pub fn relax(&mut self, max_iterations: usize) -> Result<RelaxStatus, SolveError> {
+        let clock = Instant::now();
+        let before = (
+            self.scratch.work.build_seconds,
+            self.scratch.work.evaluate_seconds,
+        );
+        let status = self.relax_slice(max_iterations);
+        // the slice's build and evaluation are counted as such
+        let w = &mut self.scratch.work;
+        w.solve_seconds += clock.elapsed().as_secs_f64()
+            - (w.build_seconds - before.0)
+            - (w.evaluate_seconds - before.1);
+        status
+    }
+
+    /// One slice of [`relax`](Self::relax), its time counted there.
+    fn relax_slice(&mut self, max_iterations: usize) -> Result<RelaxStatus, SolveError> {
         if self.scratch.job.is_none() {
             // a new simulation's element stiffness (and, for the direct
             // solver, its pattern), one chunk per call
@@ -72,10 +90,14 @@ impl Simulation {
             let initial = self.initial_contact_states();
             let params = self.contact_params();
             self.scratch.job = Some(match self.model.scene.solver.contact_update {
-                ContactUpdate::Outer => Job::Outer(ContactSolve::new(load, initial, params)),
-                ContactUpdate::InSweep => {
-                    Job::InSweep(InSweep::new(load, initial, self.in_sweep_params()))
+                ContactUpdate::Outer => {
+                    Job::Outer(Box::new(ContactSolve::new(load, initial, params)))
                 }
+                ContactUpdate::InSweep => Job::InSweep(Box::new(InSweep::new(
+                    load,
+                    initial,
+                    self.in_sweep_params(),
+                ))),
             });
         }
         let scratch = &mut self.scratch;
@@ -109,12 +131,19 @@ impl Simulation {
             return;
         };
         let reached = job.into_reached();
+        let w = &mut self.scratch.work;
+        w.solves += 1;
+        w.contact_iterations += reached.info.iterations;
+        w.linear_iterations += reached.info.linear_iterations;
+        w.newton_fallbacks += usize::from(reached.info.newton_fallback);
         self.scratch.residual = reached.history;
         self.state.faces = reached.states;
         self.scratch.contact = reached.info;
         self.state.solved = true;
+        let clock = Instant::now();
         self.evaluate();
         self.read_rock();
+        self.scratch.work.evaluate_seconds += clock.elapsed().as_secs_f64();
     }
 
     /// Residual samples of the current (or last) solve, all its contact

@@ -248,13 +248,7 @@ mod tests {
         file.growth.max_steps = 3;
         let scene = Scene::try_from(file).expect("valid");
         let untimed = |steps: &[GrowthStepReport]| -> Vec<GrowthStepReport> {
-            steps
-                .iter()
-                .map(|s| GrowthStepReport {
-                    seconds: 0.0,
-                    ..s.clone()
-                })
-                .collect()
+            steps.iter().map(GrowthStepReport::untimed).collect()
         };
         let mut sim = Simulation::new(scene.clone()).expect("solvable");
         let (reference, failed) = sim.grow_to_end();

@@ -13,22 +13,31 @@ use crate::fracture::rock::{RockStrength, intact_rock};
 use crate::fracture::tips::{TipDomains, evaluate_tips};
 use crate::geometry::cracks::{root, split_specimen};
 use crate::geometry::plane::{P2, segment_intersection};
-use crate::report::{ContactReport, FreePieceReport, IntactRockReport, SolveReport, SolverReport};
+use crate::report::{
+    ContactReport, FreePieceReport, IntactRockReport, SolveReport, SolverReport, WorkReport,
+};
 use crate::scene::SideBc;
 
 impl Simulation {
     /// Full solve (with contact) at the current load factor with the scene's
     /// solver; fills SIFs and criterion at every free tip. The resumable
     /// solve of [`relax`](Self::relax), run to its end. Its `seconds` leave
-    /// out the element integration of a new simulation (part of the build).
+    /// out the element integration of a new simulation (part of the build);
+    /// its `work` splits the whole: the build (that integration, the
+    /// pattern, the tips' domains), the contact solve and the evaluation.
     pub fn solve(&mut self) -> Result<SolveReport, SolveError> {
         self.start_relaxation();
+        self.scratch.work = WorkReport::default();
+        let clock = Instant::now();
         self.scratch.xfem.integrate(usize::MAX);
+        self.scratch.work.build_seconds = clock.elapsed().as_secs_f64();
         let start = Instant::now();
         while !self.relax(usize::MAX)?.finished {}
+        let seconds = start.elapsed().as_secs_f64();
         Ok(SolveReport {
             intact_rock: self.intact_rock(),
-            ..self.report(start.elapsed().as_secs_f64())
+            work: std::mem::take(&mut self.scratch.work),
+            ..self.report(seconds)
         })
     }
 
@@ -167,6 +176,7 @@ impl Simulation {
             },
             kinks: self.scratch.kinks.clone(),
             other_solution: None,
+            work: WorkReport::default(),
         }
     }
 }

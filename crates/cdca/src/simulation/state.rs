@@ -16,7 +16,9 @@ use crate::fracture::criterion::{Circle, CriterionParams, Faces};
 use crate::fracture::sites::{Readings, SiteGrid};
 use crate::fracture::tips::TipDomains;
 use crate::geometry::cracks::{Crack, TipKind, split_specimen};
-use crate::report::{GrowthStepReport, KinkReport, Outcome, StartLimitReport, TipReport};
+use crate::report::{
+    GrowthStepReport, KinkReport, Outcome, StartLimitReport, TipReport, WorkReport,
+};
 use crate::scene::{Lineage, MIN_END_SEGMENT, RockStarts, Scene, SceneFile, SideBc, fmt_point};
 use crate::solvers::automaton::AutomatonParams;
 use crate::solvers::direct::Factor;
@@ -105,6 +107,8 @@ pub(super) struct Scratch {
     /// The uncracked specimen's failure load factor, and the sentence
     /// (solved at the first ask).
     pub(super) intact: std::cell::OnceCell<(Option<f64>, String)>,
+    /// What the solve or growth step under way has cost so far.
+    pub(super) work: WorkReport,
 }
 
 /// Whether `b` has the discretisation of `a`
@@ -434,6 +438,7 @@ impl Simulation {
                 site_grid: None,
                 rock: None,
                 intact: std::cell::OnceCell::new(),
+                work: WorkReport::default(),
             },
             state: State {
                 scene,

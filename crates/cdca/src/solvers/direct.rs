@@ -11,7 +11,7 @@ use faer::linalg::matmul::matmul_with_conj;
 use faer::linalg::triangular_solve::solve_upper_triangular_in_place_with_conj;
 use faer::sparse::SparseColMatRef;
 use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
-use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
+use faer::sparse::linalg::cholesky::supernodal::{SupernodalLltRef, SymbolicSupernodalCholesky};
 use faer::sparse::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_lower_triangular_transpose_in_place,
 };
@@ -484,16 +484,54 @@ impl Factor {
             .map(|&d| (o.inv[d], f[d] - load[d]))
             .filter(|&(_, v)| v != 0.0)
             .collect();
+        let done = self.solve_sparse_into(symbolic, updates, forces, dofs, &mut y);
+        Some(Partial { y, done })
+    }
+
+    /// Adds `L⁻¹ forces` (reordered positions) to the forward solution
+    /// `y` on the supernodes the forces reach, then takes the backward
+    /// solve on the supernodes holding `dofs` and their ancestors: which
+    /// supernodes it solved.
+    fn solve_sparse_into(
+        &self,
+        symbolic: &SymbolicSupernodalCholesky<usize>,
+        updates: &Updates,
+        forces: SparseColumn,
+        dofs: &[usize],
+        y: &mut [f64],
+    ) -> Vec<bool> {
         let reached = Reached::forward(symbolic, updates, &self.l, &[forces]);
         for (&row, &v) in reached.rows.iter().zip(&reached.values) {
             y[row] += v;
         }
         if let Some(c) = &self.correction {
-            c.adjust_forward(&mut y);
+            c.adjust_forward(y);
         }
-        let done = updates.with_ancestors(symbolic, dofs.iter().map(|&d| o.inv[d]));
-        self.backward_on(&mut y, |s| done[s]);
-        Some(Partial { y, done })
+        let inv = &self.ordered.inv;
+        let done = updates.with_ancestors(symbolic, dofs.iter().map(|&d| inv[d]));
+        self.backward_on(y, |s| done[s]);
+        done
+    }
+
+    /// `K⁻¹ b` for a sparse `b` (by DOF), on the DOFs `dofs` alone: the
+    /// forward solve on the supernodes `b` reaches, the backward solve on
+    /// those holding `dofs` and their ancestors, as in
+    /// [`solve_reaching`](Self::solve_reaching). By DOF, exact (to
+    /// round-off) on `dofs` and every row their supernodes hold, zero
+    /// where the backward solve did not reach. `None` for a simplicial or
+    /// unfinished factor.
+    pub fn solve_on(&self, b: &SparseColumn, dofs: &[usize]) -> Option<Vec<f64>> {
+        let o = &*self.ordered;
+        let SymbolicCholeskyRaw::Supernodal(symbolic) = o.symbolic.raw() else {
+            return None;
+        };
+        let updates = self.updates.as_ref().filter(|_| self.is_factorised())?;
+        let forces: SparseColumn = b.iter().map(|&(d, v)| (o.inv[d], v)).collect();
+        let mut y = vec![0.0; o.perm.len()];
+        let done = self.solve_sparse_into(symbolic, updates, forces, dofs, &mut y);
+        let mut u = vec![0.0; y.len()];
+        self.reached_rows(&Partial { y, done }, &mut u);
+        Some(u)
     }
 
     /// The rows of `partial` that its backward solve has reached, as DOF

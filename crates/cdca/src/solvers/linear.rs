@@ -74,6 +74,13 @@ pub trait LinearSolver: Send {
         false
     }
 
+    /// Factorises the next slice of the started solve's factorisation
+    /// (about [`FACTOR_SLICE_FLOPS`]) without solving: whether it is now
+    /// complete (at once for a solver that makes none).
+    fn factorise_next(&mut self) -> Result<bool, SolveError> {
+        Ok(true)
+    }
+
     /// Progress samples of the started solve with their times, s (setup
     /// included).
     fn samples(&self) -> &[ResidualSample];
@@ -85,6 +92,29 @@ pub trait LinearSolver: Send {
     /// for a solver that keeps no factor.
     fn coupling(&self, _rows: &[SparseColumn], _cols: &[SparseColumn]) -> Option<DMatrix<f64>> {
         None
+    }
+
+    /// `K⁻¹ b`, `K` the matrix of the started solve, for a solver that
+    /// keeps a factor of it (once factorised); `None` for one that does
+    /// not. The contact iteration's Newton step
+    /// ([`newton`](crate::contact::newton)) solves with it.
+    fn solve_again(&self, _b: &[f64]) -> Option<Vec<f64>> {
+        None
+    }
+
+    /// [`solve_again`](Self::solve_again) for a sparse `b` (by DOF), on
+    /// the DOFs `dofs` alone (by DOF; the others zero or partial): the
+    /// part of the factor `b` and `dofs` reach (all of it for a small,
+    /// simplicial factor).
+    fn solve_on(&self, _b: &SparseColumn, _dofs: &[usize]) -> Option<Vec<f64>> {
+        None
+    }
+
+    /// Whether the solver keeps a factor of its matrix, so that
+    /// [`solve_again`](Self::solve_again) answers once it is factorised:
+    /// the contact iteration then takes Newton steps.
+    fn keeps_factor(&self) -> bool {
+        false
     }
 
     /// The started solve's solution on the rows that the DOFs `dofs`
@@ -412,6 +442,34 @@ impl LinearSolver for DirectSolver {
 
     fn coupling(&self, rows: &[SparseColumn], cols: &[SparseColumn]) -> Option<DMatrix<f64>> {
         self.factors.first().map(|f| f.coupling(rows, cols))
+    }
+
+    fn keeps_factor(&self) -> bool {
+        true
+    }
+
+    fn factorise_next(&mut self) -> Result<bool, SolveError> {
+        let clock = Instant::now();
+        let done = self.factorise_slice(FACTOR_SLICE_FLOPS);
+        self.setup_seconds += clock.elapsed().as_secs_f64();
+        done
+    }
+
+    fn solve_on(&self, b: &SparseColumn, dofs: &[usize]) -> Option<Vec<f64>> {
+        let factor = self.factors.first().filter(|f| f.is_factorised())?;
+        factor.solve_on(b, dofs).or_else(|| {
+            // a simplicial factor (a small system) solves whole
+            let mut dense = vec![0.0; self.f.len()];
+            for &(d, v) in b {
+                dense[d] += v;
+            }
+            factor.solve(&dense).ok()
+        })
+    }
+
+    fn solve_again(&self, b: &[f64]) -> Option<Vec<f64>> {
+        let factor = self.factors.first().filter(|f| f.is_factorised())?;
+        factor.solve(b).ok()
     }
 
     fn solve_reaching(

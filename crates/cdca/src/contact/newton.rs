@@ -92,15 +92,8 @@ pub(crate) fn law_force(
             ContactState::Open => (0.0, 0.0),
             ContactState::Stick => (crack.kn * now.g_n, crack.kt * (now.g_t - committed[i].slip)),
             ContactState::Slip => {
-                let s = st.p_t.signum();
-                let t = if cohesive(x, i, st.g_n) {
-                    s * (crack.friction + 1.0) * crack.kn * -now.g_n
-                } else if st.g_n < 0.0 {
-                    s * (crack.cohesion + crack.friction * crack.kn * -now.g_n)
-                } else {
-                    0.0
-                };
-                (crack.kn * now.g_n, t)
+                let (a, b) = slip_line(x, i, st.g_n);
+                (crack.kn * now.g_n, st.p_t.signum() * (a + b * now.g_n))
             }
         };
         let (dn, dt) = (now.p_n - p_n, now.p_t - p_t);
@@ -120,6 +113,22 @@ pub(crate) fn law_force(
 /// The Euclidean norm.
 pub(crate) fn norm(v: &[f64]) -> f64 {
     v.iter().map(|a| a * a).sum::<f64>().sqrt()
+}
+
+/// The friction limit of face point `i` as a line in its normal gap,
+/// `τ_y = a + b g_N`, on the branch its gap `g_n` is on
+/// ([`coulomb_limit`](crate::contact::law::coulomb_limit)): `a = c_c`,
+/// `b = −μ k_N` where `k_N |g_N| ≥ c_c`, `a = 0`, `b = −(μ + 1) k_N` on the
+/// cohesion's rising branch, and nought where the point is open.
+fn slip_line(x: &Xfem, i: usize, g_n: f64) -> (f64, f64) {
+    let crack = &x.funcs.cracks[x.faces[i].crack];
+    if cohesive(x, i, g_n) {
+        (0.0, -(crack.friction + 1.0) * crack.kn)
+    } else if g_n < 0.0 {
+        (crack.cohesion, -crack.friction * crack.kn)
+    } else {
+        (0.0, 0.0)
+    }
 }
 
 /// Whether a closed point's friction limit is on the cohesion's rising
@@ -155,15 +164,8 @@ pub(crate) fn newton_step(
         if fp.follows.is_some() || st.state != ContactState::Slip {
             continue;
         }
-        let crack = &x.funcs.cracks[fp.crack];
         let s = st.p_t.signum();
-        let (a, b) = if cohesive(x, i, st.g_n) {
-            (0.0, -(crack.friction + 1.0) * crack.kn)
-        } else if st.g_n < 0.0 {
-            (crack.cohesion, -crack.friction * crack.kn)
-        } else {
-            (0.0, 0.0)
-        };
+        let (a, b) = slip_line(x, i, st.g_n);
         let (jn, jt) = jump_operators(fp);
         if b == 0.0 || st.p_t == 0.0 {
             // p_T = s a does not move with the gaps

@@ -78,8 +78,9 @@ pub struct ContactInfo {
     /// Linear iterations summed over the contact iterations.
     pub linear_iterations: usize,
     /// [`ContactSolve`](crate::contact::iteration::ContactSolve): contact
-    /// iterations that changed a state on a solve of the faces' rows alone
-    /// (no whole backward solve, no residual check).
+    /// iterations taken on a solve of the faces' rows alone (the fixed
+    /// point's that changed a state, every Newton step's but those where no
+    /// point slips).
     pub face_solves: usize,
     /// The last linear solve.
     pub last: LinearInfo,

@@ -189,15 +189,10 @@ impl CriterionParams {
 /// `r0 = (K_IC/σ_t)² / 2π`, the size of the tip's process (plastic) zone
 /// (Irwin's estimate). Both given: used as they are.
 pub fn radius_and_strength(r0: Option<f64>, m: &Material) -> (f64, f64) {
-    let radius = |st: f64| (m.k_ic / st).powi(2) / (2.0 * PI);
     match (r0, m.tensile_strength) {
         (Some(r0), Some(st)) => (r0, st),
         (Some(r0), None) => (r0, m.k_ic / (2.0 * PI * r0).sqrt()),
-        (None, Some(st)) => (radius(st), st),
-        (None, None) => {
-            let st = m.tension_cutoff();
-            (radius(st), st)
-        }
+        (None, _) => (m.process_zone(m.tensile()), m.tensile()),
     }
 }
 

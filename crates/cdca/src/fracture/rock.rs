@@ -35,7 +35,7 @@ impl RockStrength {
         let s = Self {
             ucs: 2.0 * c * phi.cos() / (1.0 - phi.sin()),
             n_phi: (1.0 + phi.sin()) / (1.0 - phi.sin()),
-            tensile: m.tensile_strength.unwrap_or_else(|| m.tension_cutoff()),
+            tensile: m.tensile(),
             cohesion: c,
             friction_angle: phi,
         };

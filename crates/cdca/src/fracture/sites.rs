@@ -84,7 +84,7 @@ impl SiteGrid {
         // and lay on it, six times over at one site, until the coincident
         // Heaviside enrichments made the stiffness singular (issue 62: the
         // 300 mm stepped pair at 150 × 150, r0 = 1.34 mm < h = 2 mm)
-        let faces = r0.max(mesh.h());
+        let faces = join_distance(r0, mesh);
         for crack in cracks {
             for (a, b) in crack.segments() {
                 mark(a.inf(&b), a.sup(&b), faces, &|c| {
@@ -359,7 +359,7 @@ pub fn start_at(
         direction,
         mode,
         half_length,
-        snap: readings.radius.max(mesh.h()),
+        snap: join_distance(readings.radius, mesh),
     }
 }
 
@@ -392,6 +392,13 @@ fn shear_along(
         n += 1.0;
     }
     if n > 0.0 { sum / n } else { 0.0 }
+}
+
+/// The distance within which a start's end joins a crack
+/// ([`Start::snap`]), and within which of a crack no site lies: the disc's
+/// radius r0, or one element where that is longer.
+fn join_distance(r0: f64, mesh: &Mesh) -> f64 {
+    r0.max(mesh.h())
 }
 
 /// Centre of element `e`, m.

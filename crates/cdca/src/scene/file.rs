@@ -110,6 +110,19 @@ impl Material {
         let phi = self.friction_angle_deg.to_radians();
         2.0 * self.cohesion * phi.cos() / (1.0 + phi.sin())
     }
+
+    /// The rock's tensile strength σ_t, Pa: `tensile_strength`, else the
+    /// [`tension_cutoff`](Self::tension_cutoff).
+    pub fn tensile(&self) -> f64 {
+        self.tensile_strength
+            .unwrap_or_else(|| self.tension_cutoff())
+    }
+
+    /// Irwin's process zone at the tensile strength `sigma_t`,
+    /// `r_p = (K_IC/σ_t)² / 2π`, m.
+    pub fn process_zone(&self, sigma_t: f64) -> f64 {
+        (self.k_ic / sigma_t).powi(2) / (2.0 * std::f64::consts::PI)
+    }
 }
 
 /// Geometry of an arc crack: centre, radius, start and end angle (degrees,

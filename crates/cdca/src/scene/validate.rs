@@ -329,12 +329,13 @@ impl SceneFile {
             let reason = too_large("a criterion radius r0 =", r0);
             ensure(r0 <= side, "criterion.r0", Num(r0), reason)?;
         }
-        let (field, value, sigma_t) = match m.tensile_strength {
-            Some(st) => ("material.tensile_strength", st, st),
-            None if m.cohesion > 0.0 => ("material.cohesion", m.cohesion, m.tension_cutoff()),
+        let (field, value) = match m.tensile_strength {
+            Some(st) => ("material.tensile_strength", st),
+            None if m.cohesion > 0.0 => ("material.cohesion", m.cohesion),
             None => return Ok(()),
         };
-        let r_p = (m.k_ic / sigma_t).powi(2) / (2.0 * std::f64::consts::PI);
+        let sigma_t = m.tensile();
+        let r_p = m.process_zone(sigma_t);
         let what = format!("σ_t = {sigma_t:.3e} Pa and a process zone r_p = (K_IC/σ_t)²/2π =");
         ensure(
             r_p.is_finite() && r_p <= side,

@@ -8,6 +8,9 @@
 # assets/screenshot.png; the workbench arguments, e.g.
 #   bash scripts/screenshot.sh 6 assets/relax.png -- scene.json --run relax
 #
+# CDCA_SHOT_SIZE=WxH sets the screen's and the window's size (default
+# 1400x900), e.g. CDCA_SHOT_SIZE=390x844 for a phone's.
+#
 # Installs what it needs with apt-get when missing: xvfb, imagemagick and the
 # run-time libraries of winit + glow (X cursor/input, xkbcommon, EGL/GL Mesa).
 set -euo pipefail
@@ -19,7 +22,7 @@ if [[ $# -gt 0 && "$1" != "--" ]]; then wait_s="$1"; shift; fi
 if [[ $# -gt 0 && "$1" != "--" ]]; then out="$1"; shift; fi
 [[ $# -gt 0 && "$1" == "--" ]] && shift
 app_args=("$@")
-size="1400x900"
+size="${CDCA_SHOT_SIZE:-1400x900}"
 
 need=()
 command -v Xvfb >/dev/null || need+=(xvfb)
@@ -55,7 +58,7 @@ sleep 1
 data_dir="$(mktemp -d)"
 DISPLAY="$display" XDG_DATA_HOME="$data_dir" HOME="$data_dir" \
     LIBGL_ALWAYS_SOFTWARE=1 WINIT_UNIX_BACKEND=x11 WAYLAND_DISPLAY= \
-    "$bin" "${app_args[@]}" &
+    "$bin" --size "$size" "${app_args[@]}" &
 app_pid=$!
 sleep "$wait_s"
 if ! kill -0 "$app_pid" 2>/dev/null; then

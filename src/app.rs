@@ -47,6 +47,9 @@ pub const FRAME_TARGET: Duration = Duration::from_millis(15);
 /// Least solver work per frame, however long the UI took.
 pub const MIN_SOLVER_BUDGET: Duration = Duration::from_millis(4);
 
+/// Height the canvas keeps whatever the plot panel needs, points.
+const MIN_CANVAS_HEIGHT: f32 = 150.0;
+
 /// The solver's budget in a frame after one whose work besides the
 /// solver's took `rest` (see [`FRAME_TARGET`]).
 pub fn solver_budget(rest: Duration) -> Duration {
@@ -167,6 +170,10 @@ pub struct WorkbenchApp {
     pub(crate) last_folder: Option<std::path::PathBuf>,
     /// The growth step the canvas replays (None: the state now).
     pub(crate) replay_step: Option<usize>,
+    /// What the plot panel showed besides its plot last frame (the story,
+    /// the tabs, the legend, the notes), points: the panel keeps room for
+    /// them and a whole plot.
+    plots_overhead: f32,
     /// The first frame has been laid out (the start-up work waits for it).
     painted_once: bool,
     /// The first frame and the first field were reported (see
@@ -239,6 +246,7 @@ impl WorkbenchApp {
             path_prompt: None,
             last_folder: None,
             replay_step: None,
+            plots_overhead: 60.0,
             painted_once: false,
             startup_reported: (false, false),
             opened_scene,
@@ -853,13 +861,17 @@ impl WorkbenchApp {
             loaded_study: self.loaded_study.as_ref(),
             file_study: self.file_study.as_ref(),
             selected_tip: self.selected_tip,
+            plot_tab: self.plot_tab,
+            replayed: self
+                .replay_step
+                .filter(|_| !self.runner.is_running())
+                .and_then(|k| self.runner.replay().at(k)),
             tip_curve,
             deform_scale_used: self.canvas.deform_scale_used,
         };
         let state = ViewState {
             settings: &mut self.settings,
             editor: &mut self.editor,
-            plot_tab: &mut self.plot_tab,
             fit_requested: &mut self.canvas.fit_requested,
             race_time_cap: &mut self.race_time_cap,
             study_setup: &mut self.study_setup,
@@ -880,9 +892,8 @@ impl WorkbenchApp {
             let (v, mut s) = self.view_parts();
             panels::menu::toolbar_ui(ui, &v, &mut s, &mut cmds);
         });
-        // Side panels keep their width whatever their text: content wider
-        // than the panel scrolls instead of widening it (and moving the
-        // canvas). Either can be hidden (menu bar); a narrow window (a
+        // Side panels keep their width whatever their text (see
+        // `side_scroll`). Either can be hidden (menu bar); a narrow window (a
         // phone) starts with both hidden and opens one at a time, taking
         // most of the width, and shows the run bar instead.
         let window = ui.ctx().content_rect();
@@ -908,7 +919,7 @@ impl WorkbenchApp {
                 .default_size(side_default)
                 .size_range(200.0..=side_max)
                 .show(ui, |ui| {
-                    fixed_width_scroll(ui, "scene scroll", |ui| {
+                    side_scroll(ui, "scene scroll", false, |ui| {
                         panels::scene::scene_ui(
                             ui,
                             &self.scene,
@@ -925,7 +936,7 @@ impl WorkbenchApp {
                 .default_size(side_default.max(240.0))
                 .size_range(240.0..=side_max.max(240.0))
                 .show(ui, |ui| {
-                    fixed_width_scroll(ui, "solver scroll", |ui| {
+                    side_scroll(ui, "solver scroll", true, |ui| {
                         let (v, s) = self.view_parts();
                         panels::solver::solver_ui(ui, &v, s.race_time_cap, &mut cmds);
                         ui.separator();
@@ -938,13 +949,28 @@ impl WorkbenchApp {
         // panel takes 480 px while the Study tab shows (at 1400 × 900 the
         // canvas keeps about 350)
         let study_tab = self.plot_tab == PlotTab::Study;
-        // the canvas keeps half the window's height and its margins (the
-        // fit's, at most 2 × 41 there, and the panel's): the specimen spans
-        // at least half the window (a projector at 1024 × 640 showed it
-        // 135 px high under a 300 px plot panel)
-        let min_plots = if study_tab { 480.0 } else { 20.0 };
-        let max_plots = (ui.available_rect_before_wrap().height() - 0.5 * window.height() - 110.0)
-            .max(min_plots);
+        let room = ui.available_rect_before_wrap().height();
+        // otherwise, once a run has steps, the panel holds the story, the
+        // tabs and the legend (as tall as they were last frame) and a plot
+        // of MIN_PLOT_HEIGHT whole, leaving the canvas at least
+        // MIN_CANVAS_HEIGHT; where more
+        // is left, the canvas keeps half the window's height and its
+        // margins (the fit's, at most 2 × 41 there, and the panel's): the
+        // specimen spans at least half the window (a projector at 1024 ×
+        // 640 showed it 135 px high under a 300 px plot panel)
+        let after_run = !self.runner.view().history.is_empty();
+        // before a run the canvas comes first: a class sees the specimen
+        // (at 1024 × 640 the two did not fit together)
+        let whole_plot = if after_run {
+            self.plots_overhead + panels::plots::MIN_PLOT_HEIGHT
+        } else {
+            20.0
+        };
+        let min_plots = if study_tab { 480.0 } else { whole_plot }
+            .min(room - MIN_CANVAS_HEIGHT)
+            .max(20.0);
+        let max_plots = (room - 0.5 * window.height() - 110.0).max(min_plots);
+        let mut overhead: Option<f32> = None;
         egui::Panel::bottom("plots")
             .resizable(true)
             .default_size(300.0_f32.min(max_plots))
@@ -953,15 +979,23 @@ impl WorkbenchApp {
                 // the panel keeps its height whether it shows a plot or a hint
                 ui.set_min_height(ui.available_height());
                 let (v, s) = self.view_parts();
-                panels::plots::plots_ui(
-                    ui,
-                    &v,
-                    s.plot_tab,
-                    s.study_setup,
-                    s.study_file_setup,
-                    &mut cmds,
-                );
+                panels::story::story_ui(ui, &v);
+                let plot =
+                    panels::plots::plots_ui(ui, &v, s.study_setup, s.study_file_setup, &mut cmds);
+                // the content's height (past the panel's edge where it
+                // overflows) less the plot's
+                overhead = plot.map(|p| ui.min_rect().height() - p);
             });
+        // a changed need lays the frame out again at once (otherwise the
+        // panel settles over the next frames and the tabs move under a click)
+        if let Some(o) = overhead.map(|o| o.max(0.0))
+            && (o - self.plots_overhead).abs() > 0.5
+        {
+            self.plots_overhead = o;
+            if after_run {
+                ui.ctx().request_discard("the plot panel's height");
+            }
+        }
         egui::CentralPanel::default().show(ui, |ui| {
             panels::menu::message_ui(ui, self.message.as_ref(), &mut cmds);
             panels::menu::waiting_ui(ui, self.waiting.as_ref(), &mut cmds);
@@ -1102,13 +1136,21 @@ impl WorkbenchApp {
     }
 }
 
-/// A scroll area filling the panel's width: content wider than the panel
-/// scrolls sideways instead of widening the panel.
-fn fixed_width_scroll(ui: &mut Ui, id: &str, add_contents: impl FnOnce(&mut Ui)) {
+/// A side panel's scroll area, filling the panel: content wider than the
+/// panel scrolls sideways instead of widening it; with `wrap`, text wraps
+/// to the panel's width first (the Solver panel's status and words ran
+/// past the window's edge, laid out as wide as the scrolled content).
+fn side_scroll(ui: &mut Ui, id: &str, wrap: bool, add_contents: impl FnOnce(&mut Ui)) {
+    let width = ui.available_width();
     egui::ScrollArea::both()
         .id_salt(id)
         .auto_shrink([false, false])
-        .show(ui, add_contents);
+        .show(ui, |ui| {
+            if wrap {
+                ui.set_max_width(width);
+            }
+            add_contents(ui);
+        });
 }
 
 /// When the process started, set by the native `main` when the

@@ -187,6 +187,7 @@ impl WorkbenchApp {
                 }
             },
             Command::Pause => self.runner.pause(),
+            Command::ShowPlot(tab) => self.plot_tab = tab,
             Command::Reset => {
                 // Undo brings back the run on screen
                 let run = self.runner.take_run();

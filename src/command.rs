@@ -104,6 +104,8 @@ pub enum Command {
     /// Show the run as it stood after this growth step (None: as it
     /// stands now).
     Replay(Option<usize>),
+    /// Show this plot tab.
+    ShowPlot(PlotTab),
     /// Growth with the automaton runs its multigrid-accelerated form
     /// (applies from the next growth run).
     SetAccelerateGrowth(bool),

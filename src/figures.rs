@@ -4,6 +4,7 @@
 //! them and the export writes them, so both show the same numbers.
 
 use std::collections::BTreeMap;
+use std::fmt::Write as _;
 
 use egui::Color32;
 
@@ -95,7 +96,14 @@ fn tip_colours(
             Family::Rock => ROCK_HUE,
         };
         for (k, m) in members.into_iter().enumerate() {
-            out.insert(m, shade(hue, k));
+            // the rock's cracks, one colour: a run of a dozen drew as many
+            // near-identical shades, one legend entry each
+            let colour = if f == Family::Rock {
+                hue
+            } else {
+                shade(hue, k)
+            };
+            out.insert(m, colour);
         }
     }
     out
@@ -198,6 +206,9 @@ fn per_tip(
     series
 }
 
+/// The legend's one entry for every crack started in the intact rock.
+const ROCK_CRACKS: &str = "Rock cracks (every end)";
+
 /// One series per (crack, end), drawn in pieces of consecutive steps: a
 /// solid line joins two values only when no step lies between them, and a
 /// dotted [`Style::Gap`] links a piece to the next across steps in which
@@ -212,7 +223,13 @@ fn step_series(
     let colours = tip_colours(view, series.keys().map(|&(c, t, _)| (c, t)));
     let mut out = Vec::new();
     for (key, points) in series {
-        let name = name(key);
+        // a compact legend names the rock's cracks once (the CSV keeps
+        // each crack's name after the cut)
+        let name = if family(view, key.0) == Family::Rock {
+            format!("{ROCK_CRACKS}{COMPACT_CUT}{}", name(key))
+        } else {
+            name(key)
+        };
         let colour = colours.get(&(key.0, key.1)).copied().unwrap_or(PALETTE[0]);
         let style = Style::of_end(key.1, key.2 == 2);
         let piece = |style, points: Vec<[f64; 2]>| Series {
@@ -263,6 +280,10 @@ fn sifs(view: &SolutionView) -> Option<Figure> {
     })
 }
 
+/// The kink angle of each tip grown, against the growth step. The x axis
+/// spans the whole run, and the key names the steps in which no tip grew
+/// but cracks started in the intact rock (after the default run the plot
+/// showed steps 1–2 of 14 and said nothing of the other twelve).
 fn angles(view: &SolutionView) -> Option<Figure> {
     let series = per_tip(view, |s| {
         s.grown
@@ -270,7 +291,30 @@ fn angles(view: &SolutionView) -> Option<Figure> {
             .map(|g| ((g.crack, g.tip, 0), g.angle_deg))
             .collect()
     });
-    (!series.is_empty()).then(|| Figure {
+    if series.is_empty() {
+        return None;
+    }
+    let mut key = "solid: end 1, dashed: end 2".to_owned();
+    let started_only: Vec<usize> = view
+        .history
+        .iter()
+        .filter(|s| s.grown.is_empty() && !s.nucleated.is_empty())
+        .map(|s| s.step)
+        .collect();
+    if !started_only.is_empty() {
+        let (s, pronoun) = if started_only.len() == 1 {
+            ("", "it")
+        } else {
+            ("s", "they")
+        };
+        let _ = write!(
+            key,
+            "; no tip grew at step{s} {}: {pronoun} started cracks in the intact rock",
+            units::step_list(&started_only),
+        );
+    }
+    let steps = view.history.iter().map(|s| s.step as f64);
+    Some(Figure {
         id: "angles".to_owned(),
         x_label: "growth step [–]".to_owned(),
         y_label: "kink angle θ [°]".to_owned(),
@@ -279,17 +323,23 @@ fn angles(view: &SolutionView) -> Option<Figure> {
         series: step_series(view, series, |(c, t, _)| {
             format!("{} end {}", view.crack_name(c), t + 1)
         }),
-        key: "solid: end 1, dashed: end 2".to_owned(),
+        compact_legend: true,
+        key,
         include_y: vec![0.0],
+        include_x: [steps.clone().reduce(f64::min), steps.reduce(f64::max)]
+            .into_iter()
+            .flatten()
+            .collect(),
         ..Figure::default()
     })
 }
 
 /// λ against the total crack length. Two kinds of step are marked, as the
-/// load can jump there: one whose wing ran to the specimen's edge (the last
-/// ligament, next to a support or the loaded side, needs a higher load),
-/// and one after which fewer tips are free (a wing left the specimen or
-/// ended on a crack). Beside it, dashed, the load factor at which the rock
+/// load can jump there: one whose crack ran to the specimen's edge (the
+/// last ligament, next to a support or the loaded side, needs a higher
+/// load), and one after which fewer tips are free (saying why when the
+/// step's report does: a tip that ended on a crack, or reached the edge).
+/// Beside it, dashed, the load factor at which the rock
 /// away from the cracks reaches its own strength. A last step that grew
 /// nothing because the λ_cr search reached `growth.max_load_factor` is a
 /// note at the last growth, not a point: its λ (the cap, say 100) would
@@ -310,27 +360,41 @@ fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure>
         |s: &cdca::report::GrowthStepReport| [s.crack_length * units::MM_PER_M, s.load_factor];
     let tol = 1e-9 * width.max(height);
     let on_edge = |x: f64, y: f64| x <= tol || y <= tol || x >= width - tol || y >= height - tol;
+    // each note names the crack as the canvas does (a rock crack's tip is
+    // no wing) and claims only what the step's report holds
     let mut notes: Vec<Note> = h
         .iter()
-        .filter(|s| s.grown.iter().any(|g| on_edge(g.x, g.y)))
-        .map(|s| Note {
-            at: point(s),
-            text: format!(
-                "λ = {:.3}: a wing ran to the specimen's edge",
-                s.load_factor
-            ),
+        .filter_map(|s| {
+            let g = s.grown.iter().find(|g| on_edge(g.x, g.y))?;
+            Some(Note {
+                at: point(s),
+                text: format!(
+                    "λ = {:.3}: {} ran to the specimen's edge",
+                    s.load_factor,
+                    view.crack_name(g.crack)
+                ),
+            })
         })
         .collect();
     notes.extend(
         h.windows(2)
             .filter(|pair| pair[1].tips.len() < pair[0].tips.len())
-            .map(|pair| Note {
-                at: point(&pair[1]),
-                text: format!(
-                    "{} to {} free tips: a wing left the specimen or met a crack",
-                    pair[0].tips.len(),
-                    pair[1].tips.len()
-                ),
+            .map(|pair| {
+                let s = &pair[1];
+                let edge = s.grown.iter().any(|g| on_edge(g.x, g.y));
+                let why = match (s.links.first(), edge) {
+                    (Some(l), _) => format!(
+                        ": {} ended on {}",
+                        view.crack_name(l.crack),
+                        view.crack_name(l.main)
+                    ),
+                    (None, true) => ": a tip reached the specimen's edge".to_owned(),
+                    (None, false) => String::new(),
+                };
+                Note {
+                    at: point(s),
+                    text: format!("{} to {} free tips{why}", pair[0].tips.len(), s.tips.len()),
+                }
             }),
     );
     // the first link between two flaws (coalescence), named as the story
@@ -403,9 +467,9 @@ fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure>
             points: vec![at],
         });
     }
-    // the uncracked specimen's strength, as a level line across the run;
-    // without it (before a step), the load at which the median rock away
-    // from the cracks reaches its strength
+    // the uncracked specimen's strength, as a level line across the run:
+    // the one λ of the intact rock's strength the workbench shows (the
+    // cracked scene's median at λ / u read as a second, different one)
     if let (Some(intact), Some(first), Some(last)) = (view.intact_load_factor, h.first(), h.last())
     {
         let stress = view.strength.as_ref().map_or_else(String::new, |s| {
@@ -416,24 +480,6 @@ fn load_factor(view: &SolutionView, [width, height]: [f64; 2]) -> Option<Figure>
             colour: colour(3),
             style: Style::Dashed,
             points: vec![[point(first)[0], intact], [point(last)[0], intact]],
-        });
-    } else if let Some(r) = h.iter().find_map(|s| s.intact_rock) {
-        // u is linear in the load: the median rock fails at λ / u
-        let rock: Vec<[f64; 2]> = h
-            .iter()
-            .filter_map(|s| {
-                let u = s.intact_rock?.utilisation;
-                (u > 0.0).then(|| [s.crack_length * units::MM_PER_M, s.load_factor / u])
-            })
-            .collect();
-        series.push(Series {
-            name: format!(
-                "λ at which the intact rock reaches its strength (σ_c = {:.1} MPa)",
-                r.ucs / units::PA_PER_MPA
-            ),
-            colour: colour(3),
-            style: Style::Dashed,
-            points: rock,
         });
     }
     let mut fig = Figure {
@@ -697,8 +743,14 @@ mod tests {
         );
         assert_eq!(colour("Crack 2 end 1 — K_I").0, FLAW_HUES[1]);
         assert_eq!(
-            colour("Rock crack 1 end 2 — K_I"),
+            colour("Rock cracks (every end) — Rock crack 1 end 2 — K_I"),
             (ROCK_HUE, Style::DashedAndMarkers)
+        );
+        let legend: Vec<&str> = sifs.legend().map(|s| sifs.legend_name(s)).collect();
+        assert_eq!(
+            legend.last(),
+            Some(&"Rock cracks (every end)"),
+            "{legend:?}"
         );
         let mut colours: Vec<[u8; 4]> = sifs.legend().map(|s| s.colour.to_array()).collect();
         assert_eq!(colours.len(), 6, "one legend entry per crack end");
@@ -773,10 +825,10 @@ mod tests {
         assert_eq!(load.notes[0].at, [5.5, 3.4], "x in mm");
         assert_eq!(
             load.notes[0].text,
-            "λ = 3.400: a wing ran to the specimen's edge"
+            "λ = 3.400: Crack 1 ran to the specimen's edge"
         );
-        assert!(
-            load.notes[1].text.starts_with("2 to 1 free tips"),
+        assert_eq!(
+            load.notes[1].text, "2 to 1 free tips: a tip reached the specimen's edge",
             "{}",
             load.notes[1].text
         );
@@ -785,8 +837,8 @@ mod tests {
 
     /// A tip that did not grow for some steps has its angle line dotted
     /// across them (one legend entry, each value exported once), and the
-    /// load-factor plot shows the load at which the intact rock reaches its
-    /// strength, λ / u.
+    /// load-factor plot shows the uncracked specimen's strength as a level
+    /// line, and no λ of the cracked scene's median (λ / u).
     #[test]
     fn angle_lines_break_at_gaps_and_the_rock_strength_is_drawn() {
         let mut history = vec![
@@ -821,15 +873,23 @@ mod tests {
         // the numbers exported: each growth once, the gap left out
         assert_eq!(angles.to_csv().lines().count(), 1 + 3);
         let load = &figures(PlotTab::LoadFactor, &view, None, None, SIZE)[0];
+        assert_eq!(load.series.len(), 1, "no line from the median");
+        let view = SolutionView {
+            intact_load_factor: Some(0.802),
+            ..view
+        };
+        let load = &figures(PlotTab::LoadFactor, &view, None, None, SIZE)[0];
         let rock = &load.series[1];
         assert_eq!(
             rock.name,
-            "λ at which the intact rock reaches its strength (σ_c = 80.0 MPa)"
+            "intact rock's strength (uncracked specimen): λ = 0.802"
         );
-        for (p, want) in rock.points.iter().zip([0.8, 0.8, 0.64]) {
-            assert!((p[1] - want).abs() < 1e-12, "λ = {} against {want}", p[1]);
-        }
-        assert_eq!(rock.points.len(), 3);
+        let x: Vec<[f64; 2]> = rock
+            .points
+            .iter()
+            .map(|p| [(p[0] * 1e9).round() / 1e9, p[1]])
+            .collect();
+        assert_eq!(x, vec![[4.5, 0.802], [6.5, 0.802]], "x in mm");
     }
 
     /// Every text the plots draw is in egui's default fonts (Ubuntu Light

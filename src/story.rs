@@ -31,35 +31,43 @@ pub fn story(view: &SolutionView, scene: &SceneFile) -> Option<Story> {
             units::mpa(s.load_factor * reference)
         )
     };
-    let mut lines = vec![ending(view, scene, outcome, &at)];
+    // the events in the order they happened (a tie keeps this order: the
+    // first cracks, the link, the peak), then how the run ended
+    let mut events: Vec<(usize, String)> = firsts(view, &at);
     let flaws = view.lineage.iter().filter(|l| l.drawn > 0).count();
     if let Some(c) = &view.coalescence {
         let step = view.history.iter().find(|s| s.step == c.step);
-        lines.push(format!(
-            "Crack {} and Crack {} linked at {}, {} meeting {}.",
-            c.flaws[0] + 1,
-            c.flaws[1] + 1,
-            step.map_or_else(|| format!("step {}", c.step), &at),
-            article(c.category.split('–').next().unwrap_or("crack")),
-            article(c.category.split('–').nth(1).unwrap_or("crack")),
+        events.push((
+            c.step,
+            format!(
+                "Crack {} and Crack {} linked at {}, {} meeting {}.",
+                c.flaws[0] + 1,
+                c.flaws[1] + 1,
+                step.map_or_else(|| format!("step {}", c.step), &at),
+                article(c.category.split('–').next().unwrap_or("crack")),
+                article(c.category.split('–').nth(1).unwrap_or("crack")),
+            ),
         ));
-    } else if flaws >= 2 {
-        lines.push("The flaws did not link.".to_owned());
     }
     if let Some(s) = &view.strength {
         let of_rock = s.ratio.map_or_else(String::new, |r| {
             format!(", {:.0} % of the intact rock's", 100.0 * r)
         });
-        lines.push(format!(
-            "Peak at step {}: specimen strength {}{of_rock}.",
+        events.push((
             s.peak_step,
-            units::mpa(s.peak_stress)
+            format!(
+                "Peak at step {}: specimen strength {}{of_rock}.",
+                s.peak_step,
+                units::mpa(s.peak_stress)
+            ),
         ));
     }
-    let firsts = firsts(view, &at);
-    if !firsts.is_empty() {
-        lines.push(format!("First {}.", firsts.join("; first ")));
+    events.sort_by_key(|(step, _)| *step);
+    let mut lines: Vec<String> = events.into_iter().map(|(_, line)| line).collect();
+    if view.coalescence.is_none() && flaws >= 2 {
+        lines.push("The flaws did not link.".to_owned());
     }
+    lines.push(ending(view, scene, outcome, &at));
     Some(Story {
         lines,
         went_wrong: matches!(outcome, Outcome::NotConverged | Outcome::Error),
@@ -112,9 +120,9 @@ fn ending(
     }
 }
 
-/// The steps at which the first wing, secondary crack and crack in the
-/// intact rock started (those the run had).
-fn firsts(view: &SolutionView, at: &dyn Fn(&GrowthStepReport) -> String) -> Vec<String> {
+/// The first wing, secondary crack and crack in the intact rock (those the
+/// run had), each with its step.
+fn firsts(view: &SolutionView, at: &dyn Fn(&GrowthStepReport) -> String) -> Vec<(usize, String)> {
     let drawn = |c: usize| view.lineage.get(c).is_some_and(|l| l.drawn > 0);
     let h = &view.history;
     let wing = h.iter().find(|s| {
@@ -135,7 +143,10 @@ fn firsts(view: &SolutionView, at: &dyn Fn(&GrowthStepReport) -> String) -> Vec<
         ("crack in the intact rock", rock),
     ]
     .into_iter()
-    .filter_map(|(what, s)| Some(format!("{what} at {}", at(s?))))
+    .filter_map(|(what, s)| {
+        let s = s?;
+        Some((s.step, format!("First {what} at {}.", at(s))))
+    })
     .collect()
 }
 
@@ -180,7 +191,7 @@ mod tests {
 
     /// A two-flaw run that ends through, linked by a wing at step 2: the
     /// story names both cracks as the Scene panel does, the link's load in
-    /// λ and MPa (λ × 100 MPa), the peak against the intact rock's, and
+    /// λ and MPa (λ × 50 MPa), the peak against the intact rock's, and
     /// the first wing; nothing in it is a warning.
     #[test]
     fn a_linked_pair_reads_as_a_story() {
@@ -203,7 +214,7 @@ mod tests {
             strength: Some(StrengthReport {
                 peak_step: 2,
                 peak_load_factor: 0.5,
-                reference_stress: 100e6,
+                reference_stress: 50e6,
                 peak_stress: 50e6,
                 intact_load_factor: Some(0.8),
                 ratio: Some(0.625),
@@ -216,10 +227,10 @@ mod tests {
         assert_eq!(
             s.lines,
             [
-                "The cracks ran through the specimen at step 2 (λ = 0.500, 50.00 MPa): it failed.",
-                "Crack 1 and Crack 2 linked at step 2 (λ = 0.500, 50.00 MPa), a wing meeting a flaw.",
+                "First wing at step 1 (λ = 0.400, 20.00 MPa).",
+                "Crack 1 and Crack 2 linked at step 2 (λ = 0.500, 25.00 MPa), a wing meeting a flaw.",
                 "Peak at step 2: specimen strength 50.00 MPa, 62 % of the intact rock's.",
-                "First wing at step 1 (λ = 0.400, 40.00 MPa).",
+                "The cracks ran through the specimen at step 2 (λ = 0.500, 25.00 MPa): it failed.",
             ]
         );
     }

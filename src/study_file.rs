@@ -47,9 +47,15 @@ pub const BUNDLED_STUDIES: &[BundledStudy] = &[
 ];
 
 /// Native seconds of one growth step per element (the held-out pairs, 100 ×
-/// 100: 0.14 s a step on this project's 2-core machine; a first step of
-/// the single flaw at 60 × 60 is 0.03 s).
+/// 100: 0.14 s a step on this project's 2-core machine).
 pub const SECONDS_PER_ELEMENT_STEP: f64 = 1.4e-5;
+
+/// Native seconds of a point's first step per element: the simulation
+/// built, the uncracked specimen solved, and the λ search's trials (`cdca
+/// study` on `first_steps.json`, 16 first steps of 60 × 60 on one core:
+/// 3.9 s, 67 µs per element; the Study tab estimated 0.8 s for a run that
+/// took 5.6 s in the browser with the later steps' figure).
+pub const SECONDS_PER_ELEMENT_FIRST_STEP: f64 = 7e-5;
 
 /// How much slower the browser's WebAssembly runs the solver (frame-time
 /// measurements of Run growth, docs/browser.md: about twice).
@@ -138,17 +144,19 @@ impl StudyFileSetup {
             return 0.0;
         };
         let elements = (scene.mesh.nx * scene.mesh.ny) as f64;
-        let steps = if self.first_steps {
-            1
+        let later_steps = if self.first_steps {
+            0
         } else {
-            scene.growth.max_steps.min(TYPICAL_STEPS)
+            scene.growth.max_steps.min(TYPICAL_STEPS).saturating_sub(1)
         };
         let browser = if crate::io::IN_BROWSER {
             BROWSER_FACTOR
         } else {
             1.0
         };
-        points.len() as f64 * steps as f64 * elements * SECONDS_PER_ELEMENT_STEP * browser
+        let per_point =
+            SECONDS_PER_ELEMENT_FIRST_STEP + later_steps as f64 * SECONDS_PER_ELEMENT_STEP;
+        points.len() as f64 * elements * per_point * browser
     }
 }
 
@@ -208,6 +216,16 @@ impl FileStudy {
     pub fn cancel(&mut self) {
         self.cancelled = true;
         self.current = None;
+    }
+
+    /// The time the points left will take at the mean of those done, s
+    /// (`None` before the first is done, and once the run has ended).
+    pub fn seconds_left(&self) -> Option<f64> {
+        if self.rows.is_empty() || self.finished() {
+            return None;
+        }
+        let mean = self.rows.iter().map(|r| r.seconds).sum::<f64>() / self.rows.len() as f64;
+        Some(mean * (self.points.len() - self.rows.len()) as f64)
     }
 
     pub fn progress(&self) -> f32 {
@@ -297,9 +315,11 @@ impl Task for FileStudy {
 }
 
 /// A point's value of an axis as the table shows it.
-pub fn input_text(input: &Input) -> String {
+/// A point's input as the table shows it: a number in its axis's unit
+/// (`factor` from SI), a layout's JSON cut to 24 characters.
+pub fn input_text(input: &Input, factor: f64) -> String {
     match input {
-        Input::Number(x) => crate::units::compact(*x),
+        Input::Number(x) => crate::units::compact(x * factor),
         Input::Json(_) => {
             let text = input.csv();
             if text.chars().count() > 24 {

@@ -78,7 +78,7 @@ pub fn figures(study: &Study, rows: &[Row], colour_by: MapColour) -> Vec<Figure>
             .map(|(name, members)| map(study, rows, members, name, [a, b], colour_by))
             .collect(),
         [a] => {
-            let (x_label, factor) = label(&study.axes[a]);
+            let (x_label, factor) = axis_label(&study.axes[a]);
             let x = |r: &Row| r.inputs[a].as_f64().map(|v| v * factor);
             over_one(rows, &groups, &x_label, &x)
         }
@@ -111,7 +111,9 @@ fn groups(study: &Study, rows: &[Row]) -> Vec<(String, Vec<usize>)> {
 
 /// An axis's title with its unit, and the factor from its values to the
 /// shown ones.
-fn label(axis: &Axis) -> (String, f64) {
+/// An axis's title in the UI's words and units (`flaw angle [°]`), and
+/// the factor from its SI values to that unit.
+pub fn axis_label(axis: &Axis) -> (String, f64) {
     match axis.field.as_str() {
         "flaws.angle_deg" => ("flaw angle [°]".to_owned(), 1.0),
         "flaws.bridge_over_flaw" => ("bridge / flaw length [–]".to_owned(), 1.0),
@@ -150,8 +152,8 @@ fn map(
     [a, b]: [usize; 2],
     colour_by: MapColour,
 ) -> Figure {
-    let (x_label, fx) = label(&study.axes[a]);
-    let (y_label, fy) = label(&study.axes[b]);
+    let (x_label, fx) = axis_label(&study.axes[a]);
+    let (y_label, fy) = axis_label(&study.axes[b]);
     let at = |r: &Row| Some([r.inputs[a].as_f64()? * fx, r.inputs[b].as_f64()? * fy]);
     let id = if name.is_empty() {
         "study_map".to_owned()
@@ -198,6 +200,7 @@ fn map(
             match n.as_str() {
                 "wings" => link_colour(0),
                 "secondary cracks" => link_colour(4),
+                "rock cracks" => link_colour(2),
                 _ => link_colour(1),
             }
         } else {
@@ -220,19 +223,24 @@ fn map(
     fig
 }
 
-/// Which cracks grew from the flaws of a row: wings, secondary cracks,
-/// both, or none.
+/// Which cracks a row's run grew: wings and secondary cracks from the
+/// flaws, cracks started in the intact rock, any mix of them, or none.
 fn cracks(r: &Row) -> String {
-    match r
-        .run
-        .as_ref()
-        .map(|run| (run.wings > 0, run.secondary_cracks > 0))
-    {
-        None => "invalid".to_owned(),
-        Some((true, true)) => "wings and secondary cracks".to_owned(),
-        Some((true, false)) => "wings".to_owned(),
-        Some((false, true)) => "secondary cracks".to_owned(),
-        Some((false, false)) => "nothing grew".to_owned(),
+    let Some(run) = r.run.as_ref() else {
+        return "invalid".to_owned();
+    };
+    let kinds: Vec<&str> = [
+        (run.wings > 0, "wings"),
+        (run.secondary_cracks > 0, "secondary cracks"),
+        (run.intact_rock_cracks > 0, "rock cracks"),
+    ]
+    .into_iter()
+    .filter_map(|(grew, kind)| grew.then_some(kind))
+    .collect();
+    match kinds.as_slice() {
+        [] => "nothing grew".to_owned(),
+        [one] => (*one).to_owned(),
+        [first @ .., last] => format!("{} and {last}", first.join(", ")),
     }
 }
 

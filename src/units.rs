@@ -66,9 +66,29 @@ pub fn compact(v: f64) -> String {
     }
 }
 
+/// Growth steps in increasing order, consecutive ones as a range: `2, 5–9`.
+pub fn step_list(steps: &[usize]) -> String {
+    steps
+        .chunk_by(|a, b| b == &(a + 1))
+        .map(|run| match run {
+            [one] => one.to_string(),
+            [first, .., last] => format!("{first}–{last}"),
+            [] => String::new(),
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn consecutive_steps_read_as_a_range() {
+        assert_eq!(step_list(&[2, 5, 6, 7, 8, 9]), "2, 5–9");
+        assert_eq!(step_list(&[3]), "3");
+        assert_eq!(step_list(&[3, 4]), "3–4");
+    }
 
     #[test]
     fn compact_drops_trailing_zeros_only() {

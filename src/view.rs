@@ -71,6 +71,10 @@ pub struct AppView<'a> {
     pub loaded_study: Option<&'a LoadedStudy>,
     pub file_study: Option<&'a FileStudy>,
     pub selected_tip: Option<usize>,
+    /// The plot tab shown.
+    pub plot_tab: PlotTab,
+    /// The growth step the canvas replays, when it replays one.
+    pub replayed: Option<&'a crate::replay::Snapshot>,
     /// σ_θθ and τ_rθ around the selected tip, when available.
     pub tip_curve: Option<&'a CriterionCurve>,
     /// The deformation magnification the canvas used last frame.
@@ -83,7 +87,6 @@ pub struct ViewState<'a> {
     pub settings: &'a mut ViewSettings,
     /// Tool, selection and crack being drawn.
     pub editor: &'a mut Editor,
-    pub plot_tab: &'a mut PlotTab,
     /// Fit the specimen to the canvas next frame.
     pub fit_requested: &'a mut bool,
     /// Time cap of one iterative solver in the race, s.

@@ -1222,12 +1222,15 @@ fn a_friction_study_records_the_first_growth_of_each_value() {
             assert!(g.angle_deg.is_finite() && g.angle_deg.abs() < 90.0, "{g:?}");
             assert_ne!(g.mode, cdca::report::Mode::None);
         }
-        assert!(p.load_factor.is_some_and(|l| l > 0.0 && l <= 1.0 + 1e-12));
+        // the first growth's λ_cr: above 1 since the reference load is
+        // 50 MPa (issue 65), within the search's cap
+        let cap = h.state().scene().growth.max_load_factor;
+        assert!(p.load_factor.is_some_and(|l| l > 0.0 && l <= cap));
         // the rock away from the flaw carries about the far field, λ_cr ×
-        // 100 MPa, against σ_c = 80.24 MPa (c = 15 MPa, φ = 49°): within 3%
+        // 50 MPa, against σ_c = 80.24 MPa (c = 15 MPa, φ = 49°): within 3%
         let (lambda, rock) = (p.load_factor.unwrap_or_default(), p.intact_rock);
         let u = rock.map_or(0.0, |r| r.utilisation);
-        let far = lambda * 100e6 / 80.2386e6;
+        let far = lambda * 50e6 / 80.2386e6;
         assert!((u / far - 1.0).abs() < 0.03, "u {u} against {far}");
     }
     assert!(study.to_csv().lines().count() >= 3);

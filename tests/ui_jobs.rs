@@ -784,7 +784,7 @@ fn solve_says_whether_another_start_finds_another_solution() {
 
 /// Each bundled pair grown to its end reads as a story, not an error: the
 /// status names the link (Crack 1 and Crack 2, the crack types, the step,
-/// λ and the stress λ × 100 MPa, as `cdca grow` reports them) and the peak
+/// λ and the stress λ × 50 MPa, as `cdca grow` reports them) and the peak
 /// with its share of the intact rock's strength; nothing is in the
 /// warning colour (the story did not go wrong, no error banner); the
 /// field on the canvas is at the last step's λ, the load its label prints.
@@ -848,9 +848,9 @@ fn each_bundled_pair_ends_in_a_story() {
         let mpa: f64 = said[head.len()..said.len() - tail.len()]
             .parse()
             .expect("the stress, MPa");
-        // four significant digits of λ × 100 MPa
+        // four significant digits of λ × 50 MPa
         assert!(
-            (mpa / (step.load_factor * 100.0) - 1.0).abs() < 1e-3,
+            (mpa / (step.load_factor * 50.0) - 1.0).abs() < 1e-3,
             "{said}"
         );
         h.get_by_label(said);
@@ -871,6 +871,32 @@ fn each_bundled_pair_ends_in_a_story() {
         assert!(
             ratio < 1.0,
             "{file}: the pair weakens the specimen: {ratio}"
+        );
+        // the scene's description says what this run does (issue 65: the
+        // stepped pair's said its wings link, and no wing grew)
+        let description = &app.scene().description;
+        let flaw_grew = app
+            .growth_history()
+            .iter()
+            .any(|s| s.grown.iter().any(|g| g.crack < 2));
+        assert_eq!(
+            description.contains("no flaw tip grows"),
+            !flaw_grew,
+            "{file}: {description}"
+        );
+        assert!(
+            description.contains(&format!("links them (at step {})", link.step)),
+            "{file}: link at step {}: {description}",
+            link.step
+        );
+        assert!(
+            description.contains(&format!(
+                "peak of about {:.0} MPa, {:.0}% of the uncracked rock's",
+                strength.peak_stress / 1e6,
+                100.0 * ratio
+            )),
+            "{file}: {} MPa, {ratio}: {description}",
+            strength.peak_stress / 1e6
         );
         let last = app.growth_history().last().expect("steps").load_factor;
         assert_eq!(app.shown_field_load_factor(), Some(last), "{file}");

@@ -152,8 +152,8 @@ fn check_tab(h: &mut Harness<'_, WorkbenchApp>, tab: &str, min: [f32; 2]) -> Vec
         .iter()
         .all(|s| s.grown.is_empty());
     if tab == "Angles" && none_grew {
-        assert!(shown.is_empty());
-        h.get_by_label_contains("No tip has grown in");
+        assert!(shown.is_empty(), "{shown:?}");
+        h.get_by_label_contains("No tip of a crack grew in");
     } else if shown.is_empty() {
         let hint: Vec<String> = texts
             .iter()

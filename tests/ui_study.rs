@@ -107,6 +107,23 @@ fn the_study_tab_runs_a_study_files_first_steps_as_the_cli_does() {
         map.lines().next(),
         Some("series,flaw angle [°],face friction μ [–]")
     );
+    // each point's class names the cracks its row counts (issue 65: the
+    // points whose first crack started in the intact rock said "nothing
+    // grew")
+    let count = |label: &str| map.lines().filter(|l| l.starts_with(label)).count();
+    let runs = || run.rows.iter().filter_map(|r| r.run.as_ref());
+    let rock = runs().filter(|r| r.intact_rock_cracks > 0).count();
+    let none = runs()
+        .filter(|r| r.wings + r.secondary_cracks + r.intact_rock_cracks == 0)
+        .count();
+    eprintln!("map classes: {rock} points with rock cracks, {none} with nothing grown");
+    assert!(rock > 0, "first_steps.json starts rock cracks");
+    assert_eq!(count("nothing grew,"), none, "{map}");
+    assert_eq!(
+        map.lines().filter(|l| l.contains("rock cracks")).count(),
+        rock,
+        "{map}"
+    );
 }
 
 /// Reference: the library's rows. A study file with its scene inline,

@@ -221,8 +221,12 @@ pub fn paint_boundary(
                     (pa + (pb - pa) * (5.0 / n as f32) + out * (len + 8.0), align)
                 };
                 // inside the canvas whatever the fit's margin: on a small
-                // canvas the label fell past its edge and was cut off
+                // canvas the label fell past its edge and was cut off (a
+                // canvas under 20 points has no room for it at all)
                 let inner = view.rect.shrink(10.0);
+                if !inner.is_positive() {
+                    continue;
+                }
                 let at_label = Pos2::new(
                     at_label.x.clamp(inner.left(), inner.right()),
                     at_label.y.clamp(inner.top(), inner.bottom()),
@@ -403,9 +407,11 @@ pub fn paint_tips(
     }
 }
 
-/// Where two flaws linked: a ring at the junction and, beside it, the
-/// flaws and the step ("Crack 1 and Crack 2 linked, step 9") on the theme's
-/// window fill.
+/// Where two flaws linked: a ring at the junction and, in the canvas's
+/// top-left corner (beside the junction it covered the cracks at the
+/// canvas's middle), the flaws and the step ("Crack 1 and Crack 2
+/// linked, step 9") on the theme's window fill, joined to the ring by a
+/// thin line.
 pub fn paint_link(
     painter: &Painter,
     view: &ViewTransform,
@@ -413,8 +419,6 @@ pub fn paint_link(
     link: &cdca::report::CoalescenceReport,
 ) {
     let q = view.screen_from_world(at);
-    painter.circle_stroke(q, 9.0, Stroke::new(3.0, Color32::WHITE));
-    painter.circle_stroke(q, 9.0, Stroke::new(1.5, Color32::BLACK));
     let visuals = painter.ctx().global_style().visuals.clone();
     let text = format!(
         "Crack {} and Crack {} linked, step {}",
@@ -427,10 +431,16 @@ pub fn paint_link(
         FontId::proportional(12.0),
         visuals.strong_text_color(),
     );
-    let at = q + vec2(12.0, -12.0 - galley.size().y);
-    let backing = egui::Rect::from_min_size(at, galley.size()).expand(3.0);
+    let corner = view.rect.left_top() + vec2(10.0, 10.0);
+    let backing = egui::Rect::from_min_size(corner, galley.size()).expand(3.0);
+    painter.line_segment(
+        [backing.center_bottom(), q],
+        Stroke::new(1.0, visuals.strong_text_color().gamma_multiply(0.6)),
+    );
+    painter.circle_stroke(q, 9.0, Stroke::new(3.0, Color32::WHITE));
+    painter.circle_stroke(q, 9.0, Stroke::new(1.5, Color32::BLACK));
     painter.rect_filled(backing, 3.0, visuals.window_fill.gamma_multiply(0.92));
-    painter.galley(at, galley, visuals.strong_text_color());
+    painter.galley(corner, galley, visuals.strong_text_color());
 }
 
 /// The canvas key's secondary-crack row (the UI tests look for it).

@@ -3,6 +3,10 @@
 
 use egui::{Pos2, Rect, Vec2, pos2};
 
+/// Width of the column the canvas's key and colour legend take at its
+/// right, points (the key's widest row and its swatch).
+pub const KEY_COLUMN: f32 = 180.0;
+
 /// Pan and zoom of the canvas.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ViewTransform {
@@ -52,13 +56,19 @@ impl ViewTransform {
     /// Shows the rectangle `[0, width] × [0, height]` with a margin for
     /// the load arrows: 70 points on a large canvas, down to 36 on a small
     /// one (a projector's 1024 × 640), where the specimen comes first.
+    ///
+    /// A specimen the canvas's height bounds leaves width spare: up to
+    /// [`KEY_COLUMN`] of it goes to the right, where the key and the colour
+    /// legend stand (at 1024 × 640 the key covered the specimen's corner).
     pub fn fit(&mut self, rect: Rect, width: f64, height: f64) {
         self.rect = rect;
-        self.center_world = [0.5 * width, 0.5 * height];
         let margin = (0.1 * rect.width().min(rect.height())).clamp(36.0, 70.0);
-        let sx = f64::from((rect.width() - 2.0 * margin).max(20.0)) / width;
+        let inner = f64::from((rect.width() - 2.0 * margin).max(20.0));
+        let sx = inner / width;
         let sy = f64::from((rect.height() - 2.0 * margin).max(20.0)) / height;
         self.points_per_m = sx.min(sy);
+        let spare = (inner - width * self.points_per_m).min(f64::from(KEY_COLUMN));
+        self.center_world = [0.5 * width + 0.5 * spare / self.points_per_m, 0.5 * height];
     }
 
     /// Zooms by `factor` keeping the world point under `anchor` in place.

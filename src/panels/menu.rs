@@ -101,7 +101,12 @@ pub fn menu_bar_ui(ui: &mut Ui, v: &AppView, s: &mut ViewState, cmds: &mut Vec<C
         panel_toggles(ui, s);
         if !s.layout.is_narrow() {
             ui.separator();
-            ui.label(scene_title(v));
+            // cut to the window, the whole title on hover: a long one
+            // widened the menu bar past the window and pushed the Solver
+            // panel's right edge, and the text in it, off screen
+            let title = scene_title(v);
+            ui.add(egui::Label::new(&title).truncate())
+                .on_hover_text(title);
         }
     });
 }
@@ -184,17 +189,20 @@ pub fn toolbar_ui(ui: &mut Ui, v: &AppView, state: &mut ViewState, cmds: &mut Ve
             editor.tool = Tool::DrawCrack;
             editor.drawing.clear();
         }
-        if ui
-            .add_enabled(v.can_undo, egui::Button::new("Undo"))
-            .clicked()
-        {
-            cmds.push(Command::Undo);
-        }
-        if ui
-            .add_enabled(v.can_redo, egui::Button::new("Redo"))
-            .clicked()
-        {
-            cmds.push(Command::Redo);
+        // a narrow window leaves Undo and Redo to the Edit menu
+        if !state.layout.is_narrow() {
+            if ui
+                .add_enabled(v.can_undo, egui::Button::new("Undo"))
+                .clicked()
+            {
+                cmds.push(Command::Undo);
+            }
+            if ui
+                .add_enabled(v.can_redo, egui::Button::new("Redo"))
+                .clicked()
+            {
+                cmds.push(Command::Redo);
+            }
         }
         ui.separator();
         let s = &mut *state.settings;
@@ -219,38 +227,50 @@ pub fn toolbar_ui(ui: &mut Ui, v: &AppView, state: &mut ViewState, cmds: &mut Ve
                     }
                 }
             });
-        ui.checkbox(&mut s.show_mesh, "Mesh");
-        ui.checkbox(&mut s.show_loads, "Loads & supports");
-        if !v.scene.cracks.is_empty() {
-            ui.checkbox(&mut s.show_contact, "Contact");
-            // open faces carry no traction
-            if s.show_contact && !v.solution.all_faces_open() {
-                ui.checkbox(&mut s.show_traction_arrows, "Traction arrows");
-            }
-        }
-        ui.checkbox(&mut s.deformed, "Deformed");
-        if s.deformed {
-            let mut scale = s.deform_scale.unwrap_or(v.deform_scale_used);
-            let speed = scale.abs() * 0.01 + 0.1;
-            let l = ui.label("scale ×");
-            let r = ui
-                .add(
-                    egui::DragValue::new(&mut scale)
-                        .speed(speed)
-                        .range(0.0..=1e9),
-                )
-                .labelled_by(l.id);
-            if r.changed() {
-                s.deform_scale = Some(scale);
-            }
-            if ui
-                .add_enabled(s.deform_scale.is_some(), egui::Button::new("Auto scale"))
-                .clicked()
-            {
-                s.deform_scale = None;
-            }
+        // a narrow window keeps the layers in a menu: wrapped, they took
+        // three rows of a phone's height
+        if state.layout.is_narrow() {
+            ui.menu_button("Show", |ui| layers_ui(ui, v, s));
+        } else {
+            layers_ui(ui, v, s);
         }
     });
+}
+
+/// The canvas's layers: mesh, loads, contact, traction arrows, deformed
+/// shape and its scale.
+fn layers_ui(ui: &mut Ui, v: &AppView, s: &mut crate::canvas::ViewSettings) {
+    ui.checkbox(&mut s.show_mesh, "Mesh");
+    ui.checkbox(&mut s.show_loads, "Loads & supports");
+    if !v.scene.cracks.is_empty() {
+        ui.checkbox(&mut s.show_contact, "Contact");
+        // open faces carry no traction
+        if s.show_contact && !v.solution.all_faces_open() {
+            ui.checkbox(&mut s.show_traction_arrows, "Traction arrows");
+        }
+    }
+    ui.checkbox(&mut s.deformed, "Deformed");
+    if s.deformed {
+        let mut scale = s.deform_scale.unwrap_or(v.deform_scale_used);
+        let speed = scale.abs() * 0.01 + 0.1;
+        let l = ui.label("scale ×");
+        let r = ui
+            .add(
+                egui::DragValue::new(&mut scale)
+                    .speed(speed)
+                    .range(0.0..=1e9),
+            )
+            .labelled_by(l.id);
+        if r.changed() {
+            s.deform_scale = Some(scale);
+        }
+        if ui
+            .add_enabled(s.deform_scale.is_some(), egui::Button::new("Auto scale"))
+            .clicked()
+        {
+            s.deform_scale = None;
+        }
+    }
 }
 
 /// The error or information banner above the canvas.

@@ -8,6 +8,7 @@ pub mod replay;
 pub mod run_bar;
 pub mod scene;
 pub mod solver;
+pub mod story;
 pub mod study_file;
 pub mod tip;
 mod widgets;

@@ -34,6 +34,10 @@ const TABS: [(PlotTab, &str); 7] = [
     (PlotTab::Study, "Study"),
 ];
 
+/// Width the plot tabs take in one row, points; a narrower panel lists
+/// them in a drop-down.
+const TABS_IN_A_ROW: f32 = 600.0;
+
 /// Width reserved for y-axis numbers, so labels never disappear.
 const Y_AXIS_WIDTH: f32 = 52.0;
 
@@ -43,23 +47,42 @@ const LABEL_SPACING: f64 = 32.0;
 /// The grid spacing egui_plot's `base_step_size` is scaled by, px.
 const GRID_MIN: f32 = 8.0;
 
-/// Smallest height of a plot's data area, px.
-const MIN_PLOT_HEIGHT: f32 = 120.0;
+/// Smallest height of a plot, px: its ticks read on a phone (at 100 px
+/// only its 60° and 30° ticks showed).
+pub const MIN_PLOT_HEIGHT: f32 = 186.0;
 
 pub fn plots_ui(
     ui: &mut Ui,
     v: &AppView,
-    plot_tab: &mut PlotTab,
     study_setup: &mut StudySetup,
     file_setup: &mut StudyFileSetup,
     cmds: &mut Vec<Command>,
-) {
-    ui.horizontal_wrapped(|ui| {
-        for (tab, label) in TABS {
-            ui.selectable_value(plot_tab, tab, label);
-        }
-    });
-    let tab = *plot_tab;
+) -> Option<f32> {
+    if ui.available_width() >= TABS_IN_A_ROW {
+        ui.horizontal_wrapped(|ui| {
+            for (tab, label) in TABS {
+                if ui.selectable_label(v.plot_tab == tab, label).clicked() {
+                    cmds.push(Command::ShowPlot(tab));
+                }
+            }
+        });
+    } else {
+        // narrower, the tabs took three rows of a phone's height: a list
+        let shown = TABS
+            .iter()
+            .find(|(tab, _)| *tab == v.plot_tab)
+            .map_or("Study", |(_, label)| label);
+        egui::ComboBox::from_label("Plot")
+            .selected_text(shown)
+            .show_ui(ui, |ui| {
+                for (tab, label) in TABS {
+                    if ui.selectable_label(v.plot_tab == tab, label).clicked() {
+                        cmds.push(Command::ShowPlot(tab));
+                    }
+                }
+            });
+    }
+    let tab = v.plot_tab;
     let specimen = [v.scene.specimen.width, v.scene.specimen.height];
     let figs = figures(tab, v.solution, v.race, v.study, specimen);
     match tab {
@@ -73,13 +96,16 @@ pub fn plots_ui(
             } else {
                 study_ui(ui, v.scene, v.study, study_setup, file_setup, &figs, cmds);
             }
+            None
         }
-        _ => match figs.first() {
-            Some(fig) => figure_ui(ui, tab, 0, fig, cmds),
-            None => {
-                ui.weak(empty_hint(tab, v.solution));
+        _ => {
+            if let Some(fig) = figs.first() {
+                Some(figure_ui(ui, tab, 0, fig, cmds))
+            } else {
+                ui.add(egui::Label::new(RichText::new(empty_hint(tab, v.solution)).weak()).wrap());
+                None
             }
-        },
+        }
     }
 }
 
@@ -96,10 +122,20 @@ fn empty_hint(tab: PlotTab, view: &SolutionView) -> String {
             "This run resumes after growth step {}: the plots show the steps grown from here on (press Grow one step or Run growth).",
             view.steps_done
         ),
-        _ if steps > 0 => format!(
-            "No tip has grown in {steps} growth step{}: every tip stayed below its criterion (the tip inspector shows how far).",
-            if steps == 1 { "" } else { "s" }
-        ),
+        _ if steps > 0 => {
+            let plural = if steps == 1 { "" } else { "s" };
+            let rock: usize = view.history.iter().map(|s| s.nucleated.len()).sum();
+            if rock > 0 {
+                format!(
+                    "No tip of a crack grew in {steps} growth step{plural}: the run started {rock} crack{} in the intact rock instead (the story says where; the Load factor plot marks the steps).",
+                    if rock == 1 { "" } else { "s" }
+                )
+            } else {
+                format!(
+                    "No tip has grown in {steps} growth step{plural}: every tip stayed below its criterion (the tip inspector shows how far)."
+                )
+            }
+        }
         _ => "No growth steps yet: press Grow one step or Run growth.".to_owned(),
     }
 }
@@ -135,12 +171,12 @@ pub(crate) fn figure_ui(
     index: usize,
     fig: &Figure,
     cmds: &mut Vec<Command>,
-) {
+) -> f32 {
     if ui.available_width() >= 2.5 * LEGEND_WIDTH {
         let plot_width = ui.available_width() - LEGEND_WIDTH - ui.spacing().item_spacing.x;
         let height = ui.available_height();
         ui.horizontal_top(|ui| {
-            ui.allocate_ui_with_layout(
+            let plot = ui.allocate_ui_with_layout(
                 egui::vec2(plot_width, height),
                 egui::Layout::top_down(egui::Align::Min),
                 |ui| plot_and_notes_ui(ui, fig),
@@ -161,14 +197,30 @@ pub(crate) fn figure_ui(
                         });
                 },
             );
-        });
+            plot.inner
+        })
+        .inner
     } else {
-        ui.horizontal_wrapped(|ui| {
-            legend_ui(ui, fig, false);
-            export_buttons_ui(ui, tab, index, cmds);
-        });
-        plot_and_notes_ui(ui, fig);
+        // above the plot, the legend keeps to what the plot leaves (a run
+        // with 16 crack ends pushed a phone's plot out of the panel) and
+        // scrolls
+        let room = ui.available_height() - MIN_PLOT_HEIGHT - notes_height(ui, fig);
+        egui::ScrollArea::vertical()
+            .id_salt(("legend row", &fig.id))
+            .max_height(room.max(2.0 * ui.text_style_height(&egui::TextStyle::Body)))
+            .show(ui, |ui| {
+                ui.horizontal_wrapped(|ui| {
+                    legend_ui(ui, fig, false);
+                    export_buttons_ui(ui, tab, index, cmds);
+                });
+            });
+        plot_and_notes_ui(ui, fig)
     }
+}
+
+/// The height the notes' lines below a plot take.
+fn notes_height(ui: &Ui, fig: &Figure) -> f32 {
+    fig.notes.len() as f32 * (ui.text_style_height(&egui::TextStyle::Small) + 4.0)
 }
 
 /// The legend's entries (one per line in a column, else wrapped whole) and
@@ -222,9 +274,10 @@ fn export_buttons_ui(ui: &mut Ui, tab: PlotTab, index: usize, cmds: &mut Vec<Com
 }
 
 /// The plot, its numbered note marks, and the notes' words below it.
-fn plot_and_notes_ui(ui: &mut Ui, fig: &Figure) {
+/// Returns the plot's height.
+fn plot_and_notes_ui(ui: &mut Ui, fig: &Figure) -> f32 {
     // the notes' lines below the plot keep their room
-    let notes = fig.notes.len() as f32 * (ui.text_style_height(&egui::TextStyle::Small) + 4.0);
+    let notes = notes_height(ui, fig);
     let height = (ui.available_height() - notes).max(MIN_PLOT_HEIGHT);
     let width = (ui.available_width() - RIGHT_ROOM).max(0.0);
     let kind = fig.y_ticks;
@@ -359,6 +412,7 @@ fn plot_and_notes_ui(ui: &mut Ui, fig: &Figure) {
     for (i, n) in fig.notes.iter().enumerate() {
         ui.small(format!("{}: {}", i + 1, n.text));
     }
+    shown.response.rect.height()
 }
 
 /// A plot's name for assistive technology: `Plot: y against x`.
@@ -611,10 +665,16 @@ fn study_table(ui: &mut Ui, study: &Study) {
     });
 }
 
-fn race_ui(ui: &mut Ui, race: Option<&Race>, figs: &[Figure], cmds: &mut Vec<Command>) {
+/// The race's progress and plot; returns the plot's height.
+fn race_ui(
+    ui: &mut Ui,
+    race: Option<&Race>,
+    figs: &[Figure],
+    cmds: &mut Vec<Command>,
+) -> Option<f32> {
     let Some(race) = race else {
         ui.weak("Races every solver on this scene from u = 0 against the direct solution (press Compare solvers).");
-        return;
+        return None;
     };
     ui.horizontal(|ui| {
         if let Some((run, progress)) = race.status() {
@@ -636,7 +696,6 @@ fn race_ui(ui: &mut Ui, race: Option<&Race>, figs: &[Figure], cmds: &mut Vec<Com
             cmds.push(Command::Export(Export::Race));
         }
     });
-    if let Some(fig) = figs.first() {
-        figure_ui(ui, PlotTab::SolverComparison, 0, fig, cmds);
-    }
+    figs.first()
+        .map(|fig| figure_ui(ui, PlotTab::SolverComparison, 0, fig, cmds))
 }

@@ -31,6 +31,15 @@ pub fn scene_ui(
         let l = ui.label("Name");
         ui.text_edit_singleline(&mut draft.name).labelled_by(l.id);
     });
+    // the scene file's own words on what it models (the bundled scenes say
+    // what their run does); closed at first, it would push the fields down
+    if !scene.description.is_empty() {
+        CollapsingHeader::new("About this scene")
+            .default_open(false)
+            .show(ui, |ui| {
+                ui.label(&scene.description);
+            });
+    }
     specimen_ui(ui, &mut draft, &mut t);
     material_ui(ui, &mut draft, &mut t);
     boundary_ui(ui, &mut draft, &mut t);

@@ -560,26 +560,11 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
             _ => {}
         }
     });
-    if let Some(story) = crate::story::story(view, v.scene) {
-        let colour = if story.went_wrong {
-            ui.visuals().warn_fg_color
-        } else {
-            ui.visuals().strong_text_color()
-        };
-        let told = ui.vertical(|ui| {
-            for line in &story.lines {
-                ui.colored_label(colour, line);
-            }
-        });
-        // the report's note says when the peak is only a bound
-        if let Some(s) = &view.strength {
-            told.response.on_hover_text(&s.note);
-        }
-    }
     if let Some(r) = view.intact_rock {
         ui.label(intact_rock_words(
             &r,
             view.load_factor,
+            view.intact_load_factor,
             v.scene.growth.intact_rock,
         ));
     }
@@ -720,18 +705,22 @@ fn free_piece_words(
 }
 
 /// The intact rock's number in words, under the status: how much of the
-/// uncracked area is past its strength at this load, and the load at
-/// which the median reaches it (u is linear in the load). "0.98 ×
-/// strength, 47% failed" used to read as a contradiction, and "1.26 ×
-/// strength" as a specimen failed before any crack grew.
+/// uncracked area is past its strength at this load, the median's
+/// utilisation, and, once known (after the first growth step), the one λ of
+/// the rock's strength the workbench shows: the uncracked specimen's. "0.98
+/// × strength, 47% failed" used to read as a contradiction, "1.26 ×
+/// strength" as a specimen failed before any crack grew, and the median's
+/// λ / u (0.79, then 0.78) as a second strength beside the plot's 0.802.
 fn intact_rock_words(
     r: &cdca::report::IntactRockReport,
     load_factor: f64,
+    uncracked: Option<f64>,
     model: IntactRock,
 ) -> String {
     let past = format!(
-        "{:.0}% of the uncracked rock is past its strength at λ = {load_factor:.2}",
-        100.0 * r.failed_fraction
+        "{:.0}% of the uncracked rock is past its strength at λ = {load_factor:.2}, its median at {:.2} × strength",
+        100.0 * r.failed_fraction,
+        r.utilisation
     );
     let checked = match model {
         IntactRock::Nucleate => "Growth starts a crack where its reading over r0 first reaches it.",
@@ -739,13 +728,11 @@ fn intact_rock_words(
             "The paper's model (growth.intact_rock \"ignore\") does not check it."
         }
     };
-    if r.utilisation > 0.0 {
-        format!(
-            "Intact rock: {past}; its median reaches the strength at λ = {:.2}. {checked}",
-            load_factor / r.utilisation
-        )
-    } else {
-        format!("Intact rock: {past}.")
+    match uncracked {
+        Some(l) => format!(
+            "Intact rock: {past}. The uncracked specimen reaches its strength at λ = {l:.3}. {checked}"
+        ),
+        None => format!("Intact rock: {past}. {checked}"),
     }
 }
 

@@ -79,7 +79,7 @@ pub fn study_file_ui(
             "{runs} runs, about {}",
             units::seconds(setup.estimate_seconds(&loaded.study))
         ))
-        .on_hover_text("Before it starts, from the mesh size and the steps: about 14 µs per element and step natively, twice that in the browser; a run to the end is taken as 40 steps");
+        .on_hover_text("Before it starts, from the mesh size and the steps: a first step about 70 µs per element natively (its λ search solves several times), a later step 14 µs, twice that in the browser; a run to the end is taken as 40 steps. Once points finish, the progress bar says the time left from their own times.");
     });
     ui.horizontal_wrapped(|ui| {
         if ui
@@ -112,7 +112,13 @@ pub fn study_file_ui(
                         "{} of {} points{}",
                         run.rows.len(),
                         run.planned(),
-                        if run.cancelled() { " (cancelled)" } else { "" }
+                        if run.cancelled() {
+                            " (cancelled)".to_owned()
+                        } else {
+                            run.seconds_left().map_or_else(String::new, |s| {
+                                format!(", about {} left", units::seconds(s))
+                            })
+                        }
                     )),
             );
             let label = ui.label("Colour");
@@ -202,9 +208,16 @@ fn rows_table(ui: &mut Ui, run: &FileStudy) {
         .num_columns(axes.len() + 7)
         .show(ui, |ui| {
             ui.strong("point");
-            for a in axes {
-                ui.strong(a.field.as_str());
-            }
+            // the axes as the map names them, in the UI's units (the
+            // header read `flaws.angle_deg`), the field's path on hover
+            let factors: Vec<f64> = axes
+                .iter()
+                .map(|a| {
+                    let (title, factor) = crate::study_map::axis_label(a);
+                    ui.strong(title).on_hover_text(a.field.as_str());
+                    factor
+                })
+                .collect();
             for h in [
                 "outcome",
                 "steps",
@@ -219,8 +232,8 @@ fn rows_table(ui: &mut Ui, run: &FileStudy) {
             ui.end_row();
             for row in &run.rows {
                 ui.label(row.point.to_string());
-                for input in &row.inputs {
-                    ui.label(input_text(input));
+                for (input, factor) in row.inputs.iter().zip(&factors) {
+                    ui.label(input_text(input, *factor));
                 }
                 ui.label(&row.outcome)
                     .on_hover_text(row.error.as_deref().unwrap_or(""));

@@ -34,6 +34,10 @@ const MIN_POLAR_SIDE: f32 = 160.0;
 
 pub fn tip_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
     ui.heading("Tip inspector");
+    if let Some(snapshot) = v.replayed {
+        replayed_tips_ui(ui, snapshot);
+        return;
+    }
     let tips = &v.solution.tips;
     if tips.is_empty() {
         let sol = &v.solution;
@@ -82,6 +86,51 @@ pub fn tip_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
     }
 }
 
+/// A replayed step's tips as that step's solve had them, named as the
+/// cracks were then (the run's end named cracks that did not yet exist).
+fn replayed_tips_ui(ui: &mut Ui, snapshot: &crate::replay::Snapshot) {
+    let view = &snapshot.view;
+    ui.label(format!(
+        "Replaying step {}: the free tips of its solve at λ = {:.3}.",
+        snapshot.step, view.load_factor
+    ));
+    if view.tips.is_empty() {
+        ui.weak("No tips were kept for this step.");
+        return;
+    }
+    Grid::new("replayed tips")
+        .num_columns(4)
+        .striped(true)
+        .show(ui, |ui| {
+            for head in ["Tip", "K_I", "K_II", "Decision"] {
+                ui.strong(head);
+            }
+            ui.end_row();
+            for t in &view.tips {
+                ui.label(format!("{}, end {}", view.crack_name(t.crack), t.tip + 1));
+                ui.label(k1_words(t));
+                ui.label(units::mpa_sqrt_m(t.k2));
+                ui.label(decision_words(t));
+                ui.end_row();
+            }
+        });
+}
+
+/// The criterion's decision; "grows in tension" beside closed faces says
+/// why (the sliding faces' K_II pulls the rock beside the tip apart: a
+/// wing), which read as a contradiction next to "K_I ≈ 0 (faces closed)".
+fn decision_words(tip: &TipReport) -> String {
+    let at = units::deg(tip.criterion.angle_deg);
+    match tip.criterion.mode {
+        Mode::Tension if closed(tip) => {
+            format!("grows in tension at {at}: sliding (K_II) pulls the rock there apart")
+        }
+        Mode::Tension => format!("grows in tension at {at}"),
+        Mode::Shear => format!("grows in shear at {at}"),
+        Mode::None => "does not grow".to_owned(),
+    }
+}
+
 fn values_ui(ui: &mut Ui, tip: &TipReport) {
     Grid::new("tip values").num_columns(2).show(ui, |ui| {
         let rows = [
@@ -92,14 +141,7 @@ fn values_ui(ui: &mut Ui, tip: &TipReport) {
             ("K_I", k1_words(tip)),
             ("K_II", units::mpa_sqrt_m(tip.k2)),
             ("T-stress", units::mpa(tip.t_stress)),
-            (
-                "Decision",
-                match tip.criterion.mode {
-                    Mode::Tension => "grows in tension".to_owned(),
-                    Mode::Shear => "grows in shear".to_owned(),
-                    Mode::None => "does not grow".to_owned(),
-                },
-            ),
+            ("Decision", decision_words(tip)),
             ("Angle", units::deg(tip.criterion.angle_deg)),
             ("max σ_θθ on r0", units::mpa(tip.criterion.sigma_theta_max)),
             ("max |τ_rθ| on r0", units::mpa(tip.criterion.tau_max)),
@@ -121,11 +163,16 @@ fn values_ui(ui: &mut Ui, tip: &TipReport) {
 /// read as a contradiction. Below 1 % of |K_II| in magnitude it is shown
 /// as "≈ 0 (faces closed)", the computed value on hover.
 fn k1_words(tip: &TipReport) -> String {
-    if tip.k1 < 0.0 && tip.k1.abs() < 0.01 * tip.k2.abs() {
+    if closed(tip) {
         "≈ 0 (faces closed)".to_owned()
     } else {
         units::mpa_sqrt_m(tip.k1)
     }
+}
+
+/// K_I is round-off on closed faces: negative and below 1 % of |K_II|.
+fn closed(tip: &TipReport) -> bool {
+    tip.k1 < 0.0 && tip.k1.abs() < 0.01 * tip.k2.abs()
 }
 
 /// Polar coordinates with the radius shifted so every plotted value is

@@ -56,6 +56,18 @@ pub fn run_until_paused(h: &mut Harness<'_, WorkbenchApp>, frames: usize) {
     );
 }
 
+/// Opens the bundled scene `file` (`assets/scenes/`) and waits for its
+/// solve.
+pub fn open_bundled(h: &mut Harness<'_, WorkbenchApp>, file: &str) {
+    let i = cdca_workbench::scenes::BUNDLED
+        .iter()
+        .position(|b| b.file == file)
+        .expect("bundled");
+    h.state_mut().push(Command::OpenBundled(i));
+    h.run_steps(2);
+    run_until_paused(h, 5000);
+}
+
 /// Clicks `button` (Grow one step, Run growth) and waits for the run to end.
 pub fn grow(h: &mut Harness<'_, WorkbenchApp>, button: &str) {
     h.get_by_label(button).click();

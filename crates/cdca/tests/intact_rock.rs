@@ -398,7 +398,8 @@ fn a_flaw_with_early_wings_still_grows_them_first() {
             first_two(IntactRock::Ignore),
             first_two(IntactRock::Nucleate),
         );
-        let wing_stress = paper[0].load_factor * 100e6;
+        let wing_stress =
+            paper[0].load_factor * common::top_load(&common::bundled("specimen_single_flaw"));
         assert!(
             wing_stress < 0.6 * sigma_c,
             "{length} m at {deg}°: wings at {wing_stress}"

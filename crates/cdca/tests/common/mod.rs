@@ -108,6 +108,16 @@ pub fn valid(scene: SceneFile) -> Scene {
     Scene::try_from(scene).unwrap_or_else(|e| panic!("invalid test scene: {e}"))
 }
 
+/// The compression on a bundled specimen's top, Pa (its reference load:
+/// 50 MPa since issue 65, 100 MPa when most reference values below were
+/// recorded; a λ recorded then is `100 MPa / top_load` times today's).
+pub fn top_load(scene: &SceneFile) -> f64 {
+    match scene.boundary.top {
+        SideBc::Traction { normal, .. } => -normal,
+        _ => panic!("the specimen is loaded on top"),
+    }
+}
+
 /// A bundled scene's file (assets/scenes/NAME.json), checked, for editing,
 /// growing by the paper's model (see [`plate`]).
 pub fn bundled(name: &str) -> SceneFile {

@@ -1,0 +1,181 @@
+//! The workbench at any window size and any text size (issue 65): from a
+//! 320 × 480 phone to a 2560 × 1440 screen, text at 100–200 %, in each
+//! plot tab, fresh, mid-run, after a run and in replay. No size panics,
+//! and from 390 points wide upward (text at up to 125 %) the story and the
+//! selected plot stay whole in the window, the plot at least 180 points
+//! tall.
+
+use cdca_workbench::command::Command;
+use cdca_workbench::layout::TEXT_SCALES;
+use cdca_workbench::{Options, PlotTab, RunMode, WorkbenchApp};
+use egui::{Rect, Vec2};
+use egui_kittest::Harness;
+use egui_kittest::kittest::{By, NodeT, Queryable};
+
+#[path = "support/harness.rs"]
+mod support;
+use support::{harness_sized, open_bundled, run_until_paused};
+
+/// Window sizes, physical pixels.
+const SIZES: [[f32; 2]; 7] = [
+    [320.0, 480.0],
+    [360.0, 640.0],
+    [390.0, 844.0],
+    [1024.0, 640.0],
+    [1280.0, 800.0],
+    [1400.0, 900.0],
+    [2560.0, 1440.0],
+];
+
+const TABS: [PlotTab; 7] = [
+    PlotTab::ResidualBySweep,
+    PlotTab::ResidualByTime,
+    PlotTab::Sifs,
+    PlotTab::Angles,
+    PlotTab::LoadFactor,
+    PlotTab::SolverComparison,
+    PlotTab::Study,
+];
+
+/// The stepped pair opened in a harness of `size`.
+fn stepped_pair(size: [f32; 2]) -> Harness<'static, WorkbenchApp> {
+    let mut h = harness_sized(size, Options::default());
+    h.run_steps(3);
+    open_bundled(&mut h, "specimen_two_flaws_stepped.json");
+    h
+}
+
+/// Every window size and text size, each plot tab: a few frames each.
+/// The tabs are chosen by command: a tab's label may be off screen on the
+/// smallest windows.
+fn sweep(h: &mut Harness<'_, WorkbenchApp>, what: &str) {
+    for size in SIZES {
+        for scale in TEXT_SCALES {
+            // as eframe does, the window's size in points follows the zoom
+            h.ctx.set_zoom_factor(scale);
+            h.set_size(Vec2::from(size) / scale);
+            for tab in TABS {
+                h.state_mut().push(Command::ShowPlot(tab));
+                h.run_steps(2);
+            }
+            eprintln!("{what}: {size:?} at {:.0} %", 100.0 * scale);
+        }
+    }
+}
+
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn no_window_or_text_size_panics_fresh_mid_run_after_a_run_or_in_replay() {
+    let mut h = stepped_pair([1400.0, 900.0]);
+    assert!(h.state().is_solved());
+    sweep(&mut h, "fresh");
+
+    h.state_mut().push(Command::RunGrowth);
+    h.run_steps(6);
+    assert_eq!(h.state().run_mode(), RunMode::Growing);
+    sweep(&mut h, "mid-run");
+
+    h.ctx.set_zoom_factor(1.0);
+    h.set_size(Vec2::new(1400.0, 900.0));
+    run_until_paused(&mut h, 20_000);
+    assert!(h.state().growth_history().len() >= 3);
+    sweep(&mut h, "after the run");
+
+    h.state_mut().push(Command::Replay(Some(2)));
+    h.run_steps(2);
+    sweep(&mut h, "replaying step 2");
+}
+
+/// The plot (its accessible name starts `Plot: `) and the story's lines
+/// on screen, by rectangle.
+fn plot_and_story(h: &Harness<'_, WorkbenchApp>) -> (Option<Rect>, Vec<(String, Rect)>) {
+    let plot = h
+        .query_all(By::new().role(egui::accesskit::Role::Figure))
+        .find(|n| {
+            n.accesskit_node()
+                .label()
+                .is_some_and(|l| l.starts_with("Plot: "))
+        })
+        .map(|n| n.rect());
+    let story = h.state().run_story().map(|s| s.lines).unwrap_or_default();
+    let lines = story
+        .into_iter()
+        .map(|line| {
+            let rect = h.get_by_label(&line).rect();
+            (line, rect)
+        })
+        .collect();
+    (plot, lines)
+}
+
+/// After the stepped pair's run, from a phone's 390 points wide upward, text
+/// at 100 and 125 %: the story's lines whole in the window and off the
+/// canvas and, in the tabs with a plot, the plot whole in the window and at
+/// least 180 points tall. (At 360 × 640 and at 150–200 % text it does not
+/// hold yet: the test prints those layouts.)
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn the_story_and_a_whole_plot_show_from_390_points_wide_up() {
+    let mut h = stepped_pair([1400.0, 900.0]);
+    h.state_mut().push(Command::RunGrowth);
+    h.run_steps(2);
+    run_until_paused(&mut h, 20_000);
+    assert!(h.state().run_story().is_some());
+    let mut checked = 0;
+    let (mut failed, mut open) = (Vec::new(), Vec::new());
+    for size in SIZES {
+        for scale in TEXT_SCALES {
+            let points = Vec2::from(size) / scale;
+            if points.x < 360.0 || points.y < 640.0 {
+                continue;
+            }
+            h.ctx.set_zoom_factor(scale);
+            h.set_size(points);
+            let window = Rect::from_min_size(egui::Pos2::ZERO, points).expand(0.5);
+            for tab in [PlotTab::Sifs, PlotTab::LoadFactor] {
+                h.state_mut().push(Command::ShowPlot(tab));
+                h.run_steps(10);
+                let (plot, story) = plot_and_story(&h);
+                let plot = plot.unwrap_or_else(|| panic!("{points:?} {tab:?}: no plot"));
+                let canvas = h.get_by_label(cdca_workbench::app::CANVAS_LABEL).rect();
+                eprintln!(
+                    "canvas {canvas:?}, story {:?}",
+                    story
+                        .iter()
+                        .map(|(_, r)| (r.top(), r.bottom()))
+                        .collect::<Vec<_>>()
+                );
+                eprintln!(
+                    "{size:?} at {:.0} % ({points:?}), {tab:?}: plot {:.0} × {:.0} at {:?}",
+                    100.0 * scale,
+                    plot.width(),
+                    plot.height(),
+                    plot.min
+                );
+                // held from a phone's 390 points wide, text at up to 125 %;
+                // 360 × 640 and larger text are issue 65's open part
+                // (printed, not asserted)
+                let held = points.x >= 390.0 && scale <= 1.25;
+                let failures = if held { &mut failed } else { &mut open };
+                if !(window.contains_rect(plot) && plot.height() >= 180.0 - 0.5) {
+                    failures.push(format!("{points:?} {tab:?}: plot {plot:?}"));
+                }
+                for (line, rect) in story {
+                    if !window.contains_rect(rect) || rect.intersects(canvas) {
+                        failures.push(format!("{points:?} {tab:?}: {line:?} at {rect:?}"));
+                    }
+                }
+                checked += usize::from(held);
+            }
+        }
+    }
+    eprintln!("not yet held:\n{}", open.join("\n"));
+    assert!(failed.is_empty(), "{}", failed.join("\n"));
+    assert!(checked >= 10, "{checked} layouts");
+}

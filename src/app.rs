@@ -1141,7 +1141,12 @@ impl WorkbenchApp {
 /// to the panel's width first (the Solver panel's status and words ran
 /// past the window's edge, laid out as wide as the scrolled content).
 fn side_scroll(ui: &mut Ui, id: &str, wrap: bool, add_contents: impl FnOnce(&mut Ui)) {
-    let width = ui.available_width();
+    // the panel may reach past the window's edge (its content is wider
+    // than the window leaves it): wrap at what is on screen, the
+    // scrollbar's width aside
+    let on_screen = ui.clip_rect().right() - ui.cursor().left();
+    let bar = ui.spacing().scroll.allocated_width();
+    let width = ui.available_width().min(on_screen) - bar;
     egui::ScrollArea::both()
         .id_salt(id)
         .auto_shrink([false, false])

@@ -460,22 +460,26 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         });
         ui.end_row();
         if let Some(r) = view.relax {
+            // the count and the residual on rows of their own, and the
+            // verdict on a third: on one line they widened the panel past
+            // the window, and the text below wrapped as wide, off screen
+            let count = iterations(view.solver, r.iterations);
+            let residual = format!("{:.2e}", r.residual);
             ui.label("Last solve");
-            let text = format!(
-                "{}, residual {:.2e}",
-                iterations(view.solver, r.iterations),
-                r.residual
-            );
-            // the verdict on a row of its own: on one line with the count it
-            // widened the panel past the window
             if r.finished && !r.converged {
                 let warn = ui.visuals().warn_fg_color;
-                ui.colored_label(warn, text);
+                ui.colored_label(warn, count);
+                ui.end_row();
+                ui.label("Residual");
+                ui.colored_label(warn, residual);
                 ui.end_row();
                 ui.label("");
                 ui.colored_label(warn, "NOT converged");
             } else {
-                ui.label(text);
+                ui.label(count);
+                ui.end_row();
+                ui.label("Residual");
+                ui.label(residual);
             }
             ui.end_row();
         }

@@ -1,7 +1,7 @@
-// What the browser tests share (smoke.mjs, layout.mjs, first_frame.mjs):
-// Debian's chromium started by playwright-core, the console watched for
-// errors and the app's timing lines, the app opened with its test hooks,
-// and clicks by label.
+// What the browser tests share (smoke.mjs, layout.mjs, first_frame.mjs,
+// solver_time.mjs): Debian's chromium started by playwright-core, the
+// console watched for errors and the app's timing lines, the app opened
+// with its test hooks, and clicks by label.
 //
 // The page is opened with `?cdca_test`, which makes the app publish its
 // widgets (label and rectangle, from egui's AccessKit tree) as

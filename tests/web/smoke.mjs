@@ -350,6 +350,8 @@ async function runGrowthFrameTimes() {
         .filter((l) => l.includes(`${tag}`) && l.includes("timing: between frames"))
         .map((l) => /between frames (\d+) tasks, (\d+) ms/.exec(l))
         .reduce(([n, ms], m) => [n + Number(m?.[1] ?? 0), ms + Number(m?.[2] ?? 0)], [0, 0]);
+    const [b, s, e] = after.growthWork ?? [0, 0, 0];
+    const work = { b, s, e, total: b + s + e };
     const summary =
         `browser frame times during Run growth: ${n} frames, ${steps} growth steps; ` +
         `mean ${mean.toFixed(1)} ms, p95 ${p95.toFixed(1)} ms, max ${max.toFixed(1)} ms`;
@@ -358,6 +360,10 @@ async function runGrowthFrameTimes() {
             `run ${(t / 1000).toFixed(1)} s from the click's frame; stopped: ${rec.why})`,
         `  (requestAnimationFrame intervals; start frame ${startFrame.toFixed(0)} ms not counted)`,
         `  solver work between frames: ${between[0]} tasks, ${(between[1] / 1000).toFixed(1)} s`,
+        // the steps' own work (build + solve + evaluate, GrowthStepReport::work),
+        // to set beside the same sum of `cdca grow`'s report (issue 64)
+        `  growth steps' work: ${work.total.toFixed(3)} s (build ${work.b.toFixed(3)}, ` +
+            `solve ${work.s.toFixed(3)}, evaluate ${work.e.toFixed(3)})`,
         `  frames over ${FROZEN_MS} ms: ${frozen.length} of ${n + 1}` +
             (frozen.length ? `; longest ${longest.join(", ")}` : ""),
         `  app CPU per frame (last report): ${cpu ? cpu.replace(/^.*timing: /, "") : "none"}` +

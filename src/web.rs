@@ -112,11 +112,21 @@ impl WebApp {
         // solve and evaluation seconds, to set beside `cdca grow`'s (issue
         // 64). Their `seconds` are wall times, which here hold the frames
         // painted between a step's slices.
-        let work = app.growth_history().iter().fold([0.0; 3], |[b, s, e], step| {
-            let w = &step.work;
-            [b + w.build_seconds, s + w.solve_seconds, e + w.evaluate_seconds]
-        });
-        set("growthWork", js_sys::Array::from_iter(work.map(JsValue::from)).into());
+        let work = app
+            .growth_history()
+            .iter()
+            .fold([0.0; 3], |[b, s, e], step| {
+                let w = &step.work;
+                [
+                    b + w.build_seconds,
+                    s + w.solve_seconds,
+                    e + w.evaluate_seconds,
+                ]
+            });
+        set(
+            "growthWork",
+            js_sys::Array::from_iter(work.map(JsValue::from)).into(),
+        );
         let ms = |t: Option<f64>| t.map_or(JsValue::NULL, JsValue::from);
         set("firstFrameMs", ms(self.first_frame_ms));
         set("firstFieldMs", ms(self.first_field_ms));

@@ -492,18 +492,21 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
             ));
             ui.end_row();
         }
-        // counted as the plots and reports count them: a reopened run's
-        // earlier steps included
-        ui.label("Growth steps");
-        ui.label(view.steps_done.to_string());
-        ui.end_row();
+        // the steps counted as the plots and reports count them (a
+        // reopened run's earlier steps included), on λ's row: a row of
+        // their own pushed the tip inspector's plot past the window
         ui.label("Load factor λ");
         // no load is applied to an unsolved, edited scene: no 0.000
-        if view.solved || view.live || !view.history.is_empty() {
-            ui.label(format!("{:.3}", view.load_factor));
+        let lambda = if view.solved || view.live || !view.history.is_empty() {
+            format!("{:.3}", view.load_factor)
         } else {
-            ui.label("–");
-        }
+            "–".to_owned()
+        };
+        let steps = match view.steps_done {
+            1 => "1 growth step".to_owned(),
+            n => format!("{n} growth steps"),
+        };
+        ui.label(format!("{lambda} after {steps}"));
         ui.end_row();
         if let Some(r) = view.intact_rock {
             intact_rock_row(ui, &r);

@@ -1400,7 +1400,7 @@ fn the_end_of_a_growth_run_is_solved_and_shown_at_the_printed_load() {
         Some(last),
         "the field's load"
     );
-    h.get_by_label_contains(&format!("{last:.3} after "));
+    h.get_by_label_contains(&format!("{last:.3} ("));
     // the default flaw grows its wings, then cracks start in the intact
     // rock at a load that does not rise: the specimen has failed there
     assert_eq!(app.growth_outcome(), Some(cdca::report::Outcome::Unstable));

@@ -737,7 +737,7 @@ fn a_split_under_load_control_shows_the_field_of_the_printed_load() {
     assert_eq!(steps.next(), None, "every step's field shown: {shown:?}");
     assert_eq!(app.load_factor(), 0.2, "the λ printed");
     assert_eq!(app.shown_field_load_factor(), Some(0.2), "the field's λ");
-    h.get_by_label_contains("0.200 after ");
+    h.get_by_label_contains("0.200 (");
     h.get_by_label_contains("The field shown is the last solved state, at λ = 0.200.");
 
     // the same state headless: two steps, then the third step's solve

@@ -503,10 +503,10 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
             "–".to_owned()
         };
         let steps = match view.steps_done {
-            1 => "1 growth step".to_owned(),
-            n => format!("{n} growth steps"),
+            1 => "1 step".to_owned(),
+            n => format!("{n} steps"),
         };
-        ui.label(format!("{lambda} after {steps}"));
+        ui.label(format!("{lambda} ({steps})"));
         ui.end_row();
         if let Some(r) = view.intact_rock {
             intact_rock_row(ui, &r);

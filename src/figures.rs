@@ -925,14 +925,7 @@ mod tests {
         let scene = cdca::Scene::try_from(crate::scenes::default_scene()).expect("valid");
         let race = Race::new(&scene, 1.0);
         let mut texts: Vec<String> = crate::figure::NOTE_MARKS.map(str::to_owned).into();
-        for tab in [
-            PlotTab::ResidualBySweep,
-            PlotTab::ResidualByTime,
-            PlotTab::Sifs,
-            PlotTab::Angles,
-            PlotTab::LoadFactor,
-            PlotTab::SolverComparison,
-        ] {
+        for tab in PlotTab::TABS.into_iter().filter(|&t| t != PlotTab::Study) {
             let figs = figures(tab, &view, Some(&race), None, SIZE);
             assert_eq!(figs.len(), 1, "{tab:?} has its plot");
             for fig in &figs {

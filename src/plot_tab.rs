@@ -21,6 +21,31 @@ pub enum PlotTab {
 }
 
 impl PlotTab {
+    /// The tabs the plot panel shows, in order (a study file's map shows in
+    /// the Study tab).
+    pub const TABS: [Self; 7] = [
+        Self::ResidualBySweep,
+        Self::ResidualByTime,
+        Self::Sifs,
+        Self::Angles,
+        Self::LoadFactor,
+        Self::SolverComparison,
+        Self::Study,
+    ];
+
+    /// The tab's name on screen.
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::ResidualBySweep => "Residual / sweeps",
+            Self::ResidualByTime => "Residual / time",
+            Self::Sifs => "K_I, K_II",
+            Self::Angles => "Angles",
+            Self::LoadFactor => "Load factor",
+            Self::SolverComparison => "Solver race",
+            Self::Study | Self::StudyMap => "Study",
+        }
+    }
+
     /// The tab a command line names (`--plot`): residual, residual-time,
     /// k, angles, load, race or study.
     pub fn from_arg(name: &str) -> Option<Self> {

@@ -27,16 +27,6 @@ const SIZES: [[f32; 2]; 7] = [
     [2560.0, 1440.0],
 ];
 
-const TABS: [PlotTab; 7] = [
-    PlotTab::ResidualBySweep,
-    PlotTab::ResidualByTime,
-    PlotTab::Sifs,
-    PlotTab::Angles,
-    PlotTab::LoadFactor,
-    PlotTab::SolverComparison,
-    PlotTab::Study,
-];
-
 /// The stepped pair opened in a harness of `size`.
 fn stepped_pair(size: [f32; 2]) -> Harness<'static, WorkbenchApp> {
     let mut h = harness_sized(size, Options::default());
@@ -54,7 +44,7 @@ fn sweep(h: &mut Harness<'_, WorkbenchApp>, what: &str) {
             // as eframe does, the window's size in points follows the zoom
             h.ctx.set_zoom_factor(scale);
             h.set_size(Vec2::from(size) / scale);
-            for tab in TABS {
+            for tab in PlotTab::TABS {
                 h.state_mut().push(Command::ShowPlot(tab));
                 h.run_steps(2);
             }

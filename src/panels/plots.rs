@@ -24,16 +24,6 @@ use crate::study_file::StudyFileSetup;
 use crate::units;
 use crate::view::AppView;
 
-const TABS: [(PlotTab, &str); 7] = [
-    (PlotTab::ResidualBySweep, "Residual / sweeps"),
-    (PlotTab::ResidualByTime, "Residual / time"),
-    (PlotTab::Sifs, "K_I, K_II"),
-    (PlotTab::Angles, "Angles"),
-    (PlotTab::LoadFactor, "Load factor"),
-    (PlotTab::SolverComparison, "Solver race"),
-    (PlotTab::Study, "Study"),
-];
-
 /// Width the plot tabs take in one row, points; a narrower panel lists
 /// them in a drop-down.
 const TABS_IN_A_ROW: f32 = 600.0;
@@ -60,23 +50,25 @@ pub fn plots_ui(
 ) -> Option<f32> {
     if ui.available_width() >= TABS_IN_A_ROW {
         ui.horizontal_wrapped(|ui| {
-            for (tab, label) in TABS {
-                if ui.selectable_label(v.plot_tab == tab, label).clicked() {
+            for tab in PlotTab::TABS {
+                if ui
+                    .selectable_label(v.plot_tab == tab, tab.label())
+                    .clicked()
+                {
                     cmds.push(Command::ShowPlot(tab));
                 }
             }
         });
     } else {
         // narrower, the tabs took three rows of a phone's height: a list
-        let shown = TABS
-            .iter()
-            .find(|(tab, _)| *tab == v.plot_tab)
-            .map_or("Study", |(_, label)| label);
         egui::ComboBox::from_label("Plot")
-            .selected_text(shown)
+            .selected_text(v.plot_tab.label())
             .show_ui(ui, |ui| {
-                for (tab, label) in TABS {
-                    if ui.selectable_label(v.plot_tab == tab, label).clicked() {
+                for tab in PlotTab::TABS {
+                    if ui
+                        .selectable_label(v.plot_tab == tab, tab.label())
+                        .clicked()
+                    {
                         cmds.push(Command::ShowPlot(tab));
                     }
                 }

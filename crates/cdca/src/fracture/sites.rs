@@ -506,6 +506,15 @@ mod tests {
     /// free DOF, read with the default r0 (the paper's rock: r_p =
     /// 1.342 mm) and no keep-out disc.
     fn read_field(n: usize, field: impl Fn(P2) -> [f64; 2]) -> (Readings, Mesh, RockStrength) {
+        read_field_on(n, None, field)
+    }
+
+    /// [`read_field`] over a disc of radius `r0` (`None`: the default).
+    fn read_field_on(
+        n: usize,
+        r0: Option<f64>,
+        field: impl Fn(P2) -> [f64; 2],
+    ) -> (Readings, Mesh, RockStrength) {
         let json = format!(
             r#"{{"specimen":{{"width":0.01,"height":0.01}},"mesh":{{"nx":{n},"ny":{n}}},
             "material":{{"young":20e9,"poisson":0.25}}}}"#
@@ -524,7 +533,7 @@ mod tests {
             }
         }
         let strength = RockStrength::of_material(&scene.material).expect("c > 0");
-        let r0 = crate::fracture::criterion::CriterionParams::of_scene(&scene).r0;
+        let r0 = r0.unwrap_or(crate::fracture::criterion::CriterionParams::of_scene(&scene).r0);
         let grid = SiteGrid::new(&x, &model.fixed, &[], r0);
         assert_eq!(
             grid.len(),
@@ -541,26 +550,8 @@ mod tests {
     /// its value at the centre, to round-off (1e-9).
     #[test]
     fn a_disc_wider_than_the_specimen_reads_the_whole_specimen() {
-        let n = 12;
-        let json = format!(
-            r#"{{"specimen":{{"width":0.01,"height":0.01}},"mesh":{{"nx":{n},"ny":{n}}},
-            "material":{{"young":20e9,"poisson":0.25}}}}"#
-        );
-        let scene = Scene::from_json(&json).expect("scene");
-        let model = Model::new(scene.clone());
-        let x = model.discretise(model.initial_cracks());
         let b = 1e-2;
-        let mut u = vec![0.0; x.n_free()];
-        for node in 0..x.mesh.node_count() {
-            let f = x.dofs.std_free(node, 0);
-            if f != FIXED {
-                u[f as usize] = b * x.mesh.node_pos(node).x.powi(2);
-            }
-        }
-        let strength = RockStrength::of_material(&scene.material).expect("c > 0");
-        let grid = SiteGrid::new(&x, &model.fixed, &[], 1e10);
-        let readings = grid.read(&x, &u, &strength, 1.0);
-        assert_eq!(readings.sites.len(), n * n);
+        let (readings, _, _) = read_field_on(12, Some(1e10), |p| [b * p.x * p.x, 0.0]);
         let mean = 2.0 * b * 20e9 / (1.0 - 0.25 * 0.25) * 0.005;
         for s in &readings.sites {
             let err = (s.stress[0] - mean).abs() / mean;

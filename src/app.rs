@@ -47,8 +47,13 @@ pub const FRAME_TARGET: Duration = Duration::from_millis(15);
 /// Least solver work per frame, however long the UI took.
 pub const MIN_SOLVER_BUDGET: Duration = Duration::from_millis(4);
 
-/// Height the canvas keeps whatever the plot panel needs, points.
-const MIN_CANVAS_HEIGHT: f32 = 150.0;
+/// Height the canvas (with the replay bar above it) keeps whatever the
+/// plot panel needs, points: a fifth of the window, from 110 on a phone's
+/// 640 points to 150 from 750 points up (at 360 × 640 the story, the tabs
+/// and a whole plot leave no more).
+fn min_canvas_height(window: f32) -> f32 {
+    (0.2 * window).clamp(110.0, 150.0)
+}
 
 /// The solver's budget in a frame after one whose work besides the
 /// solver's took `rest` (see [`FRAME_TARGET`]).
@@ -174,6 +179,9 @@ pub struct WorkbenchApp {
     /// the tabs, the legend, the notes), points: the panel keeps room for
     /// them and a whole plot.
     plots_overhead: f32,
+    /// Where the story and the plot showed last frame, points (for the
+    /// browser's layout test: `window.cdcaState`).
+    pub(crate) story_and_plot: [Option<egui::Rect>; 2],
     /// The first frame has been laid out (the start-up work waits for it).
     painted_once: bool,
     /// The first frame and the first field were reported (see
@@ -262,6 +270,7 @@ impl WorkbenchApp {
             frame_solver_seconds: 0.0,
             screenshot: Arc::default(),
             screenshot_rect: None,
+            story_and_plot: [None, None],
         }
     }
 
@@ -881,6 +890,12 @@ impl WorkbenchApp {
         (view, state)
     }
 
+    /// Whether the replay bar shows above the canvas: after a run that
+    /// stored two steps or more.
+    fn replay_shown(&self) -> bool {
+        !self.runner.is_running() && self.runner.replay().snapshots.len() >= 2
+    }
+
     /// The whole UI. Panels read an `AppView` and push commands.
     pub fn ui(&mut self, ui: &mut Ui) {
         let mut cmds = Vec::new();
@@ -899,9 +914,10 @@ impl WorkbenchApp {
         let window = ui.ctx().content_rect();
         let narrow = self.layout.follow_width(window.width());
         if !self.layout.settings.show_solver {
+            let replay_shown = self.replay_shown();
             egui::Panel::top("run bar").show(ui, |ui| {
                 let (v, _) = self.view_parts();
-                panels::run_bar::run_bar_ui(ui, &v, &mut cmds);
+                panels::run_bar::run_bar_ui(ui, &v, replay_shown, &mut cmds);
             });
         }
         let side_max = if narrow {
@@ -953,7 +969,7 @@ impl WorkbenchApp {
         // otherwise, once a run has steps, the panel holds the story, the
         // tabs and the legend (as tall as they were last frame) and a plot
         // of MIN_PLOT_HEIGHT whole, leaving the canvas at least
-        // MIN_CANVAS_HEIGHT; where more
+        // `min_canvas_height`; where more
         // is left, the canvas keeps half the window's height and its
         // margins (the fit's, at most 2 × 41 there, and the panel's): the
         // specimen spans at least half the window (a projector at 1024 ×
@@ -967,10 +983,11 @@ impl WorkbenchApp {
             20.0
         };
         let min_plots = if study_tab { 480.0 } else { whole_plot }
-            .min(room - MIN_CANVAS_HEIGHT)
+            .min(room - min_canvas_height(window.height()))
             .max(20.0);
         let max_plots = (room - 0.5 * window.height() - 110.0).max(min_plots);
         let mut overhead: Option<f32> = None;
+        let mut story_and_plot = [None, None];
         egui::Panel::bottom("plots")
             .resizable(true)
             .default_size(300.0_f32.min(max_plots))
@@ -979,13 +996,15 @@ impl WorkbenchApp {
                 // the panel keeps its height whether it shows a plot or a hint
                 ui.set_min_height(ui.available_height());
                 let (v, s) = self.view_parts();
-                panels::story::story_ui(ui, &v);
+                let story = panels::story::story_ui(ui, &v);
                 let plot =
                     panels::plots::plots_ui(ui, &v, s.study_setup, s.study_file_setup, &mut cmds);
                 // the content's height (past the panel's edge where it
                 // overflows) less the plot's
-                overhead = plot.map(|p| ui.min_rect().height() - p);
+                overhead = plot.map(|p| ui.min_rect().height() - p.height());
+                story_and_plot = [story, plot];
             });
+        self.story_and_plot = story_and_plot;
         // a changed need lays the frame out again at once (otherwise the
         // panel settles over the next frames and the tabs move under a click)
         if let Some(o) = overhead.map(|o| o.max(0.0))
@@ -1001,7 +1020,7 @@ impl WorkbenchApp {
             panels::menu::waiting_ui(ui, self.waiting.as_ref(), &mut cmds);
             panels::menu::path_prompt_ui(ui, self.path_prompt.as_mut(), &mut cmds);
             let replay = self.runner.replay();
-            if !self.runner.is_running() {
+            if self.replay_shown() {
                 panels::replay::replay_ui(
                     ui,
                     replay,

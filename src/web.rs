@@ -151,6 +151,14 @@ impl WebApp {
             keys.push(&k);
         }
         set("keys", keys.into());
+        // the story and the plot below the canvas, for the layout test
+        // after a run (issue 65): whole in the window, off the canvas
+        let [story, plot] = app.story_and_plot;
+        let rect =
+            |r: Option<egui::Rect>| r.map_or(JsValue::NULL, |r| rect_to_page(r, zoom).into());
+        set("story", rect(story));
+        set("plot", rect(plot));
+        set("outcome", app.runner.view().outcome.is_some().into());
         set(
             "message",
             match app.message() {

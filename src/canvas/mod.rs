@@ -94,6 +94,10 @@ pub struct Canvas {
 /// Pick radius around handles and tips, points.
 const PICK_RADIUS: f32 = 9.0;
 
+/// Least canvas size (width, height), points, that shows the symbols' key
+/// and the link's label besides the specimen and its colour legend.
+const ROOMY_CANVAS: [f32; 2] = [300.0, 200.0];
+
 impl Canvas {
     pub fn ui(
         &mut self,
@@ -362,13 +366,21 @@ impl Canvas {
             );
         }
         symbols::paint_tips(painter, &view, &input.solution.tips, input.selected_tip);
-        self.key_rect = symbols::paint_key(
-            painter,
-            view.rect,
-            !input.solution.tips.is_empty(),
-            secondary.iter().flatten().any(|&s| s),
-            intact.iter().any(|&i| i),
-        );
+        // a phone's canvas under a story and a plot (about 100 points tall)
+        // keeps the specimen and its colour legend: the symbols' key and
+        // the link's label covered both, and the story tells the link
+        let roomy = view.rect.height() >= ROOMY_CANVAS[1] && view.rect.width() >= ROOMY_CANVAS[0];
+        self.key_rect = roomy
+            .then(|| {
+                symbols::paint_key(
+                    painter,
+                    view.rect,
+                    !input.solution.tips.is_empty(),
+                    secondary.iter().flatten().any(|&s| s),
+                    intact.iter().any(|&i| i),
+                )
+            })
+            .flatten();
         // the legend above the key, shortened to clear it
         self.legend_rect = None;
         if let Some((mesh, range)) = field
@@ -389,8 +401,10 @@ impl Canvas {
             symbols::paint_handles(painter, &view, scene, hovered_vertex);
         }
         // the link's label over the handles, which covered its first word
-        if let (Some(at), Some(c)) = (input.solution.junction, &input.solution.coalescence) {
-            symbols::paint_link(painter, &view, at, c);
+        if let (true, Some(at), Some(c)) =
+            (roomy, input.solution.junction, &input.solution.coalescence)
+        {
+            symbols::paint_link(painter, &view, at, c, &self.load_label_rects);
         }
         self.paint_drawing(painter, editor);
         self.paint_status(painter, editor);

@@ -411,12 +411,14 @@ pub fn paint_tips(
 /// top-left corner (beside the junction it covered the cracks at the
 /// canvas's middle), the flaws and the step ("Crack 1 and Crack 2
 /// linked, step 9") on the theme's window fill, joined to the ring by a
-/// thin line.
+/// thin line. Below the load's labels where they reach the corner (at
+/// 1024 × 640 the label covered the load's value).
 pub fn paint_link(
     painter: &Painter,
     view: &ViewTransform,
     at: [f64; 2],
     link: &cdca::report::CoalescenceReport,
+    load_labels: &[egui::Rect],
 ) {
     let q = view.screen_from_world(at);
     let visuals = painter.ctx().global_style().visuals.clone();
@@ -431,8 +433,17 @@ pub fn paint_link(
         FontId::proportional(12.0),
         visuals.strong_text_color(),
     );
-    let corner = view.rect.left_top() + vec2(10.0, 10.0);
-    let backing = egui::Rect::from_min_size(corner, galley.size()).expand(3.0);
+    let mut corner = view.rect.left_top() + vec2(10.0, 10.0);
+    let backing = |corner| egui::Rect::from_min_size(corner, galley.size()).expand(3.0);
+    if let Some(bottom) = load_labels
+        .iter()
+        .filter(|r| r.intersects(backing(corner)))
+        .map(egui::Rect::bottom)
+        .reduce(f32::max)
+    {
+        corner.y = bottom + 6.0;
+    }
+    let backing = backing(corner);
     painter.line_segment(
         [backing.center_bottom(), q],
         Stroke::new(1.0, visuals.strong_text_color().gamma_multiply(0.6)),

@@ -7,6 +7,12 @@ use egui::{Pos2, Rect, Vec2, pos2};
 /// right, points (the key's widest row and its swatch).
 pub const KEY_COLUMN: f32 = 180.0;
 
+/// Width the colour legend takes from the canvas's right edge, and the
+/// height of the key at its bottom right (five rows), points: what a
+/// canvas the specimen's width bounds keeps free beside and below it.
+const LEGEND_WIDTH: f32 = 104.0;
+const KEY_HEIGHT: f32 = 92.0;
+
 /// Pan and zoom of the canvas.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ViewTransform {
@@ -60,15 +66,29 @@ impl ViewTransform {
     /// A specimen the canvas's height bounds leaves width spare: up to
     /// [`KEY_COLUMN`] of it goes to the right, where the key and the colour
     /// legend stand (at 1024 × 640 the key covered the specimen's corner).
+    /// One its width bounds (a phone's tall canvas) is drawn smaller, clear
+    /// of the colour legend at its right, and moved up, clear of the key
+    /// below it (at 390 × 844 both covered its right-hand corners).
     pub fn fit(&mut self, rect: Rect, width: f64, height: f64) {
         self.rect = rect;
         let margin = (0.1 * rect.width().min(rect.height())).clamp(36.0, 70.0);
         let inner = f64::from((rect.width() - 2.0 * margin).max(20.0));
+        let inner_y = f64::from((rect.height() - 2.0 * margin).max(20.0));
         let sx = inner / width;
-        let sy = f64::from((rect.height() - 2.0 * margin).max(20.0)) / height;
-        self.points_per_m = sx.min(sy);
+        let sy = inner_y / height;
+        let legend = f64::from((LEGEND_WIDTH - margin).max(0.0));
+        self.points_per_m = if sx < sy {
+            ((inner - legend) / width).clamp(0.5 * sx, sy)
+        } else {
+            sy
+        };
         let spare = (inner - width * self.points_per_m).min(f64::from(KEY_COLUMN));
-        self.center_world = [0.5 * width + 0.5 * spare / self.points_per_m, 0.5 * height];
+        let below = (inner_y - height * self.points_per_m)
+            .min(f64::from(2.0 * (KEY_HEIGHT - margin).max(0.0)));
+        self.center_world = [
+            0.5 * width + 0.5 * spare / self.points_per_m,
+            0.5 * height - 0.5 * below / self.points_per_m,
+        ];
     }
 
     /// Zooms by `factor` keeping the world point under `anchor` in place.

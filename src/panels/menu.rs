@@ -206,27 +206,34 @@ pub fn toolbar_ui(ui: &mut Ui, v: &AppView, state: &mut ViewState, cmds: &mut Ve
         }
         ui.separator();
         let s = &mut *state.settings;
-        egui::ComboBox::from_label("Field")
-            .selected_text(s.field.label())
-            .show_ui(ui, |ui| {
-                // a rock without cohesion has no strength to use
-                let has_strength =
-                    cdca::fracture::rock::RockStrength::of_material(&v.scene.material).is_some();
-                for k in FieldKind::ALL {
-                    if k == FieldKind::Strength && !has_strength {
-                        continue;
-                    }
-                    let item = ui.selectable_value(&mut s.field, k, k.label());
-                    if k == FieldKind::Strength {
-                        item.on_hover_text(
-                            "u = max((σ1 − N_φ σ3)/σ_c, −σ3/σ_t) with the principal \
+        // a narrow window leaves out the label: the toolbar then keeps one row
+        let field = if state.layout.is_narrow() {
+            egui::ComboBox::from_id_salt("Field")
+        } else {
+            egui::ComboBox::from_label("Field")
+        };
+        let list = field.selected_text(s.field.label()).show_ui(ui, |ui| {
+            // a rock without cohesion has no strength to use
+            let has_strength =
+                cdca::fracture::rock::RockStrength::of_material(&v.scene.material).is_some();
+            for k in FieldKind::ALL {
+                if k == FieldKind::Strength && !has_strength {
+                    continue;
+                }
+                let item = ui.selectable_value(&mut s.field, k, k.label());
+                if k == FieldKind::Strength {
+                    item.on_hover_text(
+                        "u = max((σ1 − N_φ σ3)/σ_c, −σ3/σ_t) with the principal \
                              compressions σ1 ≥ σ3: Mohr–Coulomb with a tension cut-off from \
                              the rock's c, φ and σ_t. u ≥ 1 where the uncracked rock fails; \
                              the tip criterion does not check it.",
-                        );
-                    }
+                    );
                 }
-            });
+            }
+        });
+        if state.layout.is_narrow() {
+            super::widgets::name_list(&list.response, "Field", s.field.label());
+        }
         // a narrow window keeps the layers in a menu: wrapped, they took
         // three rows of a phone's height
         if state.layout.is_narrow() {

@@ -47,7 +47,7 @@ pub fn plots_ui(
     study_setup: &mut StudySetup,
     file_setup: &mut StudyFileSetup,
     cmds: &mut Vec<Command>,
-) -> Option<f32> {
+) -> Option<egui::Rect> {
     if ui.available_width() >= TABS_IN_A_ROW {
         ui.horizontal_wrapped(|ui| {
             for tab in PlotTab::TABS {
@@ -163,7 +163,7 @@ pub(crate) fn figure_ui(
     index: usize,
     fig: &Figure,
     cmds: &mut Vec<Command>,
-) -> f32 {
+) -> egui::Rect {
     if ui.available_width() >= 2.5 * LEGEND_WIDTH {
         let plot_width = ui.available_width() - LEGEND_WIDTH - ui.spacing().item_spacing.x;
         let height = ui.available_height();
@@ -194,12 +194,14 @@ pub(crate) fn figure_ui(
         .inner
     } else {
         // above the plot, the legend keeps to what the plot leaves (a run
-        // with 16 crack ends pushed a phone's plot out of the panel) and
+        // with 16 crack ends pushed a phone's plot out of the panel), at
+        // most three rows (five took the canvas's room on a phone), and
         // scrolls
+        let row = ui.text_style_height(&egui::TextStyle::Body) + ui.spacing().item_spacing.y;
         let room = ui.available_height() - MIN_PLOT_HEIGHT - notes_height(ui, fig);
         egui::ScrollArea::vertical()
             .id_salt(("legend row", &fig.id))
-            .max_height(room.max(2.0 * ui.text_style_height(&egui::TextStyle::Body)))
+            .max_height(room.clamp(2.0 * row, 3.0 * row))
             .show(ui, |ui| {
                 ui.horizontal_wrapped(|ui| {
                     legend_ui(ui, fig, false);
@@ -219,11 +221,18 @@ fn notes_height(ui: &Ui, fig: &Figure) -> f32 {
 /// the key to the line styles.
 fn legend_ui(ui: &mut Ui, fig: &Figure, column: bool) {
     let entry = |ui: &mut Ui, colour, style, name: &str| {
-        swatch(ui, colour, style);
         if column {
+            swatch(ui, colour, style);
+            ui.add(egui::Label::new(name).wrap());
+        } else if wider_than_a_row(ui, name) {
+            // on a row of its own, wrapped: unwrapped, it widened the
+            // panel past a phone's window and the plot with it
+            ui.end_row();
+            swatch(ui, colour, style);
             ui.add(egui::Label::new(name).wrap());
         } else {
             // an entry moves to the next row whole, never cut mid-phrase
+            swatch(ui, colour, style);
             ui.add(egui::Label::new(name).extend());
         }
     };
@@ -242,12 +251,24 @@ fn legend_ui(ui: &mut Ui, fig: &Figure, column: bool) {
         }
     }
     if !fig.key.is_empty() {
-        if column {
+        if column || wider_than_a_row(ui, &fig.key) {
             ui.add(egui::Label::new(RichText::new(&fig.key).weak()).wrap());
         } else {
             ui.add(egui::Label::new(RichText::new(&fig.key).weak()).extend());
         }
     }
+}
+
+/// Whether `text` with a swatch before it is wider than a whole row of
+/// the legend.
+fn wider_than_a_row(ui: &Ui, text: &str) -> bool {
+    let font = egui::TextStyle::Body.resolve(ui.style());
+    let width = ui
+        .painter()
+        .layout_no_wrap(text.to_owned(), font, egui::Color32::PLACEHOLDER)
+        .size()
+        .x;
+    width + 2.0 * ui.spacing().interact_size.y > ui.max_rect().width()
 }
 
 fn export_buttons_ui(ui: &mut Ui, tab: PlotTab, index: usize, cmds: &mut Vec<Command>) {
@@ -266,8 +287,8 @@ fn export_buttons_ui(ui: &mut Ui, tab: PlotTab, index: usize, cmds: &mut Vec<Com
 }
 
 /// The plot, its numbered note marks, and the notes' words below it.
-/// Returns the plot's height.
-fn plot_and_notes_ui(ui: &mut Ui, fig: &Figure) -> f32 {
+/// Returns the plot's rectangle.
+fn plot_and_notes_ui(ui: &mut Ui, fig: &Figure) -> egui::Rect {
     // the notes' lines below the plot keep their room
     let notes = notes_height(ui, fig);
     let height = (ui.available_height() - notes).max(MIN_PLOT_HEIGHT);
@@ -404,7 +425,7 @@ fn plot_and_notes_ui(ui: &mut Ui, fig: &Figure) -> f32 {
     for (i, n) in fig.notes.iter().enumerate() {
         ui.small(format!("{}: {}", i + 1, n.text));
     }
-    shown.response.rect.height()
+    shown.response.rect
 }
 
 /// A plot's name for assistive technology: `Plot: y against x`.
@@ -657,13 +678,13 @@ fn study_table(ui: &mut Ui, study: &Study) {
     });
 }
 
-/// The race's progress and plot; returns the plot's height.
+/// The race's progress and plot; returns the plot's rectangle.
 fn race_ui(
     ui: &mut Ui,
     race: Option<&Race>,
     figs: &[Figure],
     cmds: &mut Vec<Command>,
-) -> Option<f32> {
+) -> Option<egui::Rect> {
     let Some(race) = race else {
         ui.weak("Races every solver on this scene from u = 0 against the direct solution (press Compare solvers).");
         return None;

@@ -1,13 +1,18 @@
 //! The replay bar above the canvas: after a growth run, a step slider and
 //! one button per event (the first wing, each secondary crack, each crack
 //! started in the intact rock, the link) that shows the run as it stood
-//! after that step.
+//! after that step. Where the buttons would take more than one row, the
+//! events are a drop-down list instead: twelve rock cracks took three rows
+//! at 1024 × 640 and four of a phone's height.
 
 use egui::Ui;
 
 use crate::command::Command;
 use crate::replay::{Replay, marks};
 use crate::solution::SolutionView;
+
+/// The events list's text while the step shown is none of them.
+pub const REPLAY_EVENTS_HINT: &str = "Go to an event";
 
 /// The bar, when the run stored at least two steps.
 pub fn replay_ui(
@@ -48,21 +53,61 @@ pub fn replay_ui(
             cmds.push(Command::Replay(None));
         }
     });
-    // the marks on their own rows
-    ui.horizontal_wrapped(|ui| {
-        let link = view.coalescence.as_ref().map(|c| c.step);
-        for m in marks(&view.history, view, link) {
-            if replay.at(m.step).is_none() {
-                continue;
-            }
-            let label = format!("{}: {}", m.step, m.text);
-            let on = shown.unwrap_or(last) == m.step;
+    let link = view.coalescence.as_ref().map(|c| c.step);
+    let marks: Vec<(usize, String)> = marks(&view.history, view, link)
+        .into_iter()
+        .filter(|m| replay.at(m.step).is_some())
+        .map(|m| (m.step, format!("{}: {}", m.step, m.text)))
+        .collect();
+    let at = shown.unwrap_or(last);
+    let mut go = |step: usize| cmds.push(Command::Replay((step != last).then_some(step)));
+    if marks.is_empty() {
+        return;
+    }
+    if !in_one_row(ui, &marks) {
+        let selected = marks
+            .iter()
+            .find(|(step, _)| *step == at)
+            .map_or(REPLAY_EVENTS_HINT, |(_, text)| text.as_str());
+        let list = egui::ComboBox::from_id_salt("replay events")
+            .selected_text(selected)
+            // as tall as the window allows: a run has tens of events
+            .height(ui.ctx().content_rect().height())
+            .show_ui(ui, |ui| {
+                for (step, text) in &marks {
+                    if ui.selectable_label(at == *step, text).clicked() {
+                        go(*step);
+                    }
+                }
+            });
+        super::widgets::name_list(&list.response, "Replay events", selected);
+        return;
+    }
+    // the marks in a row of their own
+    ui.horizontal(|ui| {
+        for (step, text) in &marks {
             if ui
-                .selectable_label(on, egui::RichText::new(label).small())
+                .selectable_label(at == *step, egui::RichText::new(text).small())
                 .clicked()
             {
-                cmds.push(Command::Replay((m.step != last).then_some(m.step)));
+                go(*step);
             }
         }
     });
+}
+
+/// Whether the marks' buttons (small text) fit in one row of `ui`.
+fn in_one_row(ui: &Ui, marks: &[(usize, String)]) -> bool {
+    let font = egui::TextStyle::Small.resolve(ui.style());
+    let spacing = ui.spacing();
+    let width: f32 = marks
+        .iter()
+        .map(|(_, text)| {
+            let galley =
+                ui.painter()
+                    .layout_no_wrap(text.clone(), font.clone(), egui::Color32::PLACEHOLDER);
+            galley.size().x + 2.0 * spacing.button_padding.x + spacing.item_spacing.x
+        })
+        .sum();
+    width <= ui.available_width()
 }

@@ -1,7 +1,9 @@
 //! The compact run bar shown while the Solver panel is hidden (on a phone
 //! it always is at first): Solve, Run growth or Pause, Grow one step, and
 //! the load factor and steps done, so that a run can be watched and driven
-//! without the panels. Editing stays in the panels.
+//! without the panels. Editing stays in the panels. After a run the replay
+//! bar shows the step and its λ, and the run bar leaves them out: the bar
+//! then keeps one row of a phone's height.
 
 use egui::{Button, Ui};
 
@@ -10,7 +12,7 @@ use crate::job::Job;
 use crate::run::RunMode;
 use crate::view::AppView;
 
-pub fn run_bar_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
+pub fn run_bar_ui(ui: &mut Ui, v: &AppView, replay_shown: bool, cmds: &mut Vec<Command>) {
     let ended = v.solution.outcome.is_some();
     let growing = v.run.job == Some(Job::Growth);
     ui.horizontal_wrapped(|ui| {
@@ -39,9 +41,11 @@ pub fn run_bar_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         {
             cmds.push(Command::GrowOne);
         }
-        ui.label(format!(
-            "λ = {:.3}   steps {}",
-            v.solution.load_factor, v.solution.steps_done
-        ));
+        if !replay_shown {
+            ui.label(format!(
+                "λ = {:.3}   steps {}",
+                v.solution.load_factor, v.solution.steps_done
+            ));
+        }
     });
 }

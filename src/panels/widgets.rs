@@ -185,3 +185,13 @@ pub fn slow_spinner(ui: &mut Ui) -> Response {
     }
     response
 }
+
+/// Gives a drop-down list shown without its label (to keep a narrow row)
+/// the accessible name `name`, its selected text `value` as its value.
+pub fn name_list(response: &egui::Response, name: &str, value: &str) {
+    response.widget_info(|| {
+        let mut info = egui::WidgetInfo::labeled(egui::Role::ComboBox, true, name);
+        info.current_text_value = Some(value.to_owned());
+        info
+    });
+}

@@ -7,13 +7,23 @@
 //   - at 1024 × 640 the specimen spans at least half the window's height;
 //   - at 390 × 844 the canvas and the Run growth button are on screen;
 //   - at every size, no key on the canvas (the key, the colour legend, the
-//     load labels) overlaps another, and each lies inside the canvas.
-// Saves a screenshot of each case as OUTDIR/web-layout-WxH.png and
-// OUTDIR/web-layout-WxH-after-resize.png (docs/browser.md shows them).
+//     load labels) overlaps another, and each lies inside the canvas;
+//   - after Run growth on the default scene, loaded at each size (issue
+//     65, as tests/ui_sizes.rs natively): the story whole in the window and
+//     off the canvas, and the plot (the tab the run ends on) whole in the
+//     window and at least 180 px tall.
+// Saves a screenshot of each case as OUTDIR/web-layout-WxH.png,
+// OUTDIR/web-layout-WxH-after-resize.png and OUTDIR/web-layout-WxH-after-run.png
+// (docs/browser.md shows them).
 //
 //   node tests/web/layout.mjs URL OUTDIR
 import { mkdirSync } from "node:fs";
 import { START_TIMEOUT_MS, hooks, launch, log, open, problems, watch } from "./common.mjs";
+
+// Longest Run growth of the default scene waited for, ms.
+const RUN_TIMEOUT_MS = 600_000;
+// Least height of the plot after a run, CSS px (= points at 100 %).
+const MIN_PLOT = 180;
 
 const [url, outDir] = process.argv.slice(2);
 if (!url || !outDir) {
@@ -45,6 +55,8 @@ const readLayout = (page) =>
         return {
             specimen: s.specimen,
             keys: s.keys,
+            story: s.story,
+            plot: s.plot,
             canvas: widget(labels[0]),
             runGrowth: widget(labels[1]),
         };
@@ -92,6 +104,25 @@ function check([w, h], layout, what) {
     );
 }
 
+// After a run: the story and the plot whole on screen, the story off the
+// canvas, the plot at least MIN_PLOT tall.
+function checkAfterRun([w, h], layout, what) {
+    const fail = (msg) => problems.push(`${what}: ${msg}`);
+    const screen = { x: 0, y: 0, w, h };
+    const { story, plot, canvas } = layout;
+    if (!story) fail("no story after the run");
+    else {
+        if (!inside(story, screen)) fail(`the story ${show(story)} is not on screen ${show(screen)}`);
+        if (overlap(story, canvas)) fail(`the story ${show(story)} overlaps the canvas ${show(canvas)}`);
+    }
+    if (!plot) fail("no plot after the run");
+    else {
+        if (!inside(plot, screen)) fail(`the plot ${show(plot)} is not on screen ${show(screen)}`);
+        if (plot.h < MIN_PLOT - 0.5) fail(`the plot ${show(plot)} is ${plot.h.toFixed(0)} px tall, under ${MIN_PLOT}`);
+    }
+    log(`${what}: story ${story ? show(story) : "none"}, plot ${plot ? show(plot) : "none"}, canvas ${show(canvas)}`);
+}
+
 const browser = await launch();
 try {
     for (const size of [LAPTOP, PROJECTOR, PHONE]) {
@@ -118,6 +149,21 @@ try {
                 const shot = `${outDir}/web-layout-${size[0]}x${size[1]}${resized ? "-after-resize" : ""}.png`;
                 await page.screenshot({ path: shot });
                 log(`screenshot: ${shot}`);
+                if (!resized) {
+                    const { click } = hooks(page);
+                    await click("Run growth");
+                    await waitState(
+                        () => window.cdcaState?.outcome && window.cdcaState.runMode === "Paused",
+                        `${what}: Run growth ends`,
+                        RUN_TIMEOUT_MS,
+                    );
+                    const ran = `${what}, after Run growth`;
+                    const after = await settledLayout(page, ran);
+                    checkAfterRun(size, after, ran);
+                    const runShot = `${outDir}/web-layout-${size[0]}x${size[1]}-after-run.png`;
+                    await page.screenshot({ path: runShot });
+                    log(`screenshot: ${runShot}`);
+                }
             } catch (e) {
                 problems.push(`${what}: ${e.message}`);
             } finally {

@@ -113,10 +113,26 @@ fn plot_and_story(h: &Harness<'_, WorkbenchApp>) -> (Option<Rect>, Vec<(String, 
     (plot, lines)
 }
 
+/// Text cut at the window's right edge: each line of text (AccessKit
+/// `TextRun`) that starts inside the window and ends past its right edge.
+/// Lines below the window are scrolled, not cut: the side panels scroll.
+fn cut_text(h: &Harness<'_, WorkbenchApp>, window: Rect) -> Vec<String> {
+    h.query_all(By::new().role(egui::accesskit::Role::TextRun))
+        .filter_map(|n| {
+            let r = n.rect();
+            let node = n.accesskit_node();
+            let text = node.value().or(node.label()).unwrap_or_default();
+            (window.contains(r.left_top()) && r.right() > window.right() && !text.is_empty())
+                .then(|| format!("{text:?} cut at {r:?}"))
+        })
+        .collect()
+}
+
 /// After the stepped pair's run, in every window of at least 360 × 640
 /// points (text at 100–200 % of the sizes above): the story's lines whole
 /// in the window and off the canvas and, in the tabs with a plot, the plot
-/// whole in the window and at least 180 points tall.
+/// whole in the window and at least 180 points tall; no line of text cut
+/// at the window's right edge.
 #[test]
 #[cfg_attr(
     debug_assertions,
@@ -165,6 +181,9 @@ fn the_story_and_a_whole_plot_show_from_360_by_640_points_up() {
                     if !window.contains_rect(rect) || rect.intersects(canvas) {
                         failed.push(format!("{points:?} {tab:?}: {line:?} at {rect:?}"));
                     }
+                }
+                for cut in cut_text(&h, window) {
+                    failed.push(format!("{points:?} {tab:?}: {cut}"));
                 }
                 checked += 1;
             }

@@ -110,6 +110,8 @@ pub struct StudyFileSetup {
     pub first_steps: bool,
     pub cap: usize,
     pub colour: MapColour,
+    /// The run's rows are shown as a table (else its maps).
+    pub table: bool,
 }
 
 impl Default for StudyFileSetup {
@@ -119,6 +121,7 @@ impl Default for StudyFileSetup {
             first_steps: true,
             cap: 8,
             colour: MapColour::Cracks,
+            table: false,
         }
     }
 }

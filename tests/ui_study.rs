@@ -10,7 +10,7 @@ use cdca_workbench::command::{Export, PlotFormat};
 use cdca_workbench::study_file::LoadedStudy;
 use cdca_workbench::{Command, PlotTab, WorkbenchApp};
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable;
+use egui_kittest::kittest::{By, NodeT, Queryable};
 
 #[path = "support/harness.rs"]
 mod support;
@@ -124,6 +124,37 @@ fn the_study_tab_runs_a_study_files_first_steps_as_the_cli_does() {
         rock,
         "{map}"
     );
+
+    // the rows as a table (issue 65: it sat under the maps, below the
+    // fold): its "rock cracks" column reads each row's count, top down
+    let expected: Vec<String> = run
+        .rows
+        .iter()
+        .map(|r| {
+            r.run
+                .as_ref()
+                .map_or("–".to_owned(), |r| r.intact_rock_cracks.to_string())
+        })
+        .collect();
+    h.get_by_label("Table").click();
+    h.run_steps(3);
+    let header = h.get_by_label("rock cracks").rect();
+    let mut column: Vec<(f32, String)> = h
+        .query_all(By::new().role(egui::accesskit::Role::Label))
+        .filter_map(|n| {
+            let r = n.rect();
+            let node = n.accesskit_node();
+            let text = node.value().or(node.label())?;
+            (r.top() > header.bottom()
+                && r.center().x > header.left()
+                && r.center().x < header.right())
+            .then_some((r.top(), text))
+        })
+        .collect();
+    column.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let shown: Vec<String> = column.into_iter().map(|(_, t)| t).collect();
+    assert!(shown.len() >= 4, "{shown:?}");
+    assert_eq!(shown, expected[..shown.len()], "the table's rock cracks");
 }
 
 /// Reference: the library's rows. A study file with its scene inline,

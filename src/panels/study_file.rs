@@ -1,9 +1,12 @@
 //! The Study tab's *Study file* mode: a study file (bundled, or opened
 //! like a scene), how much of it to run with the time that should take,
 //! run / cancel / export; then its map per layout (or its plots over one
-//! axis), each at least 300 px tall, and its rows.
+//! axis), each at least 300 px tall, or its rows in a table whose header
+//! stays in view (below the maps the table sat under the fold, its header
+//! scrolling away with its rows).
 
 use egui::{ProgressBar, Ui};
+use egui_extras::{Column, TableBuilder};
 
 use crate::command::{Command, Export};
 use crate::figure::Figure;
@@ -136,6 +139,14 @@ pub fn study_file_ui(
     let Some(run) = v.file_study else {
         return;
     };
+    ui.horizontal(|ui| {
+        ui.selectable_value(&mut setup.table, false, "Maps");
+        ui.selectable_value(&mut setup.table, true, "Table");
+    });
+    if setup.table {
+        rows_table(ui, run);
+        return;
+    }
     let figs = run.figures(setup.colour);
     egui::ScrollArea::vertical()
         .id_salt("study file scroll")
@@ -156,11 +167,6 @@ pub fn study_file_ui(
                     }
                 });
             }
-            // the rows scroll sideways on their own: a study of many axes
-            // is wider than the panel
-            egui::ScrollArea::horizontal()
-                .id_salt("study file rows")
-                .show(ui, |ui| rows_table(ui, run));
         });
 }
 
@@ -183,7 +189,13 @@ pub fn mode_ui(ui: &mut Ui, setup: &mut StudyFileSetup) {
 /// and hash on hover.
 fn describe(ui: &mut Ui, loaded: &LoadedStudy) {
     let s = &loaded.study;
-    let axes: Vec<&str> = s.axes.iter().map(|a| a.field.as_str()).collect();
+    // the axes as the map and the table name them (a field's path read
+    // `flaws.angle_deg`); the paths on hover
+    let axes: Vec<String> = s
+        .axes
+        .iter()
+        .map(|a| crate::study_map::axis_label(a).0)
+        .collect();
     let text = format!(
         "{} points, {} over {}",
         s.points().len(),
@@ -192,77 +204,112 @@ fn describe(ui: &mut Ui, loaded: &LoadedStudy) {
     );
     ui.add(egui::Label::new(egui::RichText::new(text).weak()).truncate())
         .on_hover_text(format!(
-            "{}: {} (study {})",
+            "{}: {} (study {}; axes {})",
             s.name,
             s.description,
-            s.short_hash()
+            s.short_hash(),
+            s.axes
+                .iter()
+                .map(|a| a.field.as_str())
+                .collect::<Vec<_>>()
+                .join(" × ")
         ));
 }
 
-/// The rows: point, inputs, outcome, steps, peak λ, first link, wings and
-/// secondary cracks.
+/// The columns after a row's inputs.
+const COLUMNS: [&str; 8] = [
+    "outcome",
+    "steps",
+    "peak λ [–]",
+    "first link",
+    "step",
+    "wings",
+    "secondary",
+    "rock cracks",
+];
+
+/// The rows: point, inputs, outcome, steps, peak λ, first link, wings,
+/// secondary cracks and cracks started in the intact rock, under a header
+/// that stays in view; the table scrolls sideways as a whole (a study of
+/// many axes is wider than the panel).
 fn rows_table(ui: &mut Ui, run: &FileStudy) {
     let axes = &run.study.axes;
-    egui::Grid::new("study file rows")
-        .striped(true)
-        .num_columns(axes.len() + 7)
+    // the axes as the map names them, in the UI's units (the header read
+    // `flaws.angle_deg`), the field's path on hover
+    let titles: Vec<(String, f64)> = axes.iter().map(crate::study_map::axis_label).collect();
+    let row_height = ui.text_style_height(&egui::TextStyle::Body) + 4.0;
+    egui::ScrollArea::horizontal()
+        .id_salt("study file rows")
         .show(ui, |ui| {
-            ui.strong("point");
-            // the axes as the map names them, in the UI's units (the
-            // header read `flaws.angle_deg`), the field's path on hover
-            let factors: Vec<f64> = axes
-                .iter()
-                .map(|a| {
-                    let (title, factor) = crate::study_map::axis_label(a);
-                    ui.strong(title).on_hover_text(a.field.as_str());
-                    factor
+            TableBuilder::new(ui)
+                .id_salt("study file table")
+                .striped(true)
+                .columns(Column::auto(), 1 + axes.len() + COLUMNS.len())
+                .header(row_height, |mut header| {
+                    header.col(|ui| {
+                        ui.strong("point");
+                    });
+                    for ((title, _), axis) in titles.iter().zip(axes) {
+                        header.col(|ui| {
+                            ui.strong(title).on_hover_text(axis.field.as_str());
+                        });
+                    }
+                    for h in COLUMNS {
+                        header.col(|ui| {
+                            ui.strong(h);
+                        });
+                    }
                 })
-                .collect();
-            for h in [
-                "outcome",
-                "steps",
-                "peak λ [–]",
-                "first link",
-                "step",
-                "wings",
-                "secondary",
-            ] {
-                ui.strong(h);
-            }
-            ui.end_row();
-            for row in &run.rows {
-                ui.label(row.point.to_string());
-                for (input, factor) in row.inputs.iter().zip(&factors) {
-                    ui.label(input_text(input, *factor));
-                }
-                ui.label(&row.outcome)
-                    .on_hover_text(row.error.as_deref().unwrap_or(""));
-                match &row.run {
-                    None => {
-                        for _ in 0..6 {
-                            ui.label("–");
-                        }
-                    }
-                    Some(r) => {
-                        ui.label(r.steps.to_string());
-                        ui.label(
-                            r.strength
-                                .as_ref()
-                                .map_or("–".to_owned(), |s| format!("{:.3}", s.peak_load_factor)),
-                        );
-                        let (joins, step) = r
-                            .link
-                            .as_ref()
-                            .map_or(("none".to_owned(), "–".to_owned()), |l| {
-                                (l.category.clone(), l.step.to_string())
+                .body(|body| {
+                    body.rows(row_height, run.rows.len(), |mut cells| {
+                        let row = &run.rows[cells.index()];
+                        // the outcome's cell says on hover why a point failed
+                        let error = row.error.as_deref().unwrap_or("");
+                        let mut cell = |text: String| {
+                            cells.col(|ui| {
+                                let label = ui.label(&text);
+                                if text == row.outcome && !error.is_empty() {
+                                    label.on_hover_text(error);
+                                }
                             });
-                        ui.label(joins);
-                        ui.label(step);
-                        ui.label(r.wings.to_string());
-                        ui.label(r.secondary_cracks.to_string());
-                    }
-                }
-                ui.end_row();
-            }
+                        };
+                        cell(row.point.to_string());
+                        for (input, (_, factor)) in row.inputs.iter().zip(&titles) {
+                            cell(input_text(input, *factor));
+                        }
+                        let texts: [String; 8] = match &row.run {
+                            None => std::array::from_fn(|k| {
+                                if k == 0 {
+                                    row.outcome.clone()
+                                } else {
+                                    "–".to_owned()
+                                }
+                            }),
+                            Some(r) => {
+                                let (joins, step) = r
+                                    .link
+                                    .as_ref()
+                                    .map_or(("none".to_owned(), "–".to_owned()), |l| {
+                                        (l.category.clone(), l.step.to_string())
+                                    });
+                                [
+                                    row.outcome.clone(),
+                                    r.steps.to_string(),
+                                    r.strength.as_ref().map_or("–".to_owned(), |s| {
+                                        format!("{:.3}", s.peak_load_factor)
+                                    }),
+                                    joins,
+                                    step,
+                                    r.wings.to_string(),
+                                    r.secondary_cracks.to_string(),
+                                    r.intact_rock_cracks.to_string(),
+                                ]
+                            }
+                        };
+                        for text in texts {
+                            cell(text);
+                        }
+                    });
+                });
         });
 }

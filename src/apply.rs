@@ -221,6 +221,7 @@ impl WorkbenchApp {
                 self.no_tip_wanted = tip.is_none();
             }
             Command::DismissMessage => self.message = None,
+            Command::Refuse(why) => self.message = Some(Message::Error(why)),
             Command::CancelJob => self.cancel_job(),
             Command::StartWaiting => {
                 if let Some(w) = self.waiting.take() {
@@ -783,6 +784,7 @@ fn touches_simulation(cmd: &Command) -> bool {
         Command::Replay(_)
             | Command::SelectTip(_)
             | Command::DismissMessage
+            | Command::Refuse(_)
             | Command::CancelTypedPath
             | Command::DropWaiting
             | Command::SetAccelerateGrowth(_)

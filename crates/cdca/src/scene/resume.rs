@@ -241,14 +241,14 @@ impl Resume {
         if self.increment == 0 {
             return Err(SceneError::invalid(
                 "growth.resume.increment",
-                0,
+                0_usize,
                 "must be at least 1",
             ));
         }
         for (i, f) in self.faces.iter().enumerate() {
             let field = format!("growth.resume.faces[{i}]");
             if let Some(v) = f.iter().find(|v| !v.is_finite()) {
-                return Err(SceneError::invalid(field, v, "must be finite"));
+                return Err(SceneError::invalid(field, *v, "must be finite"));
             }
             if ![0.0, 1.0, 2.0].contains(&f[0]) {
                 return Err(SceneError::invalid(

@@ -327,16 +327,26 @@ pub fn path_prompt_ui(ui: &mut Ui, prompt: Option<&mut PathPrompt>, cmds: &mut V
         .stroke(egui::Stroke::new(1.5, color))
         .show(ui, |ui| {
             ui.colored_label(color, prompt.text());
+            // the field within the panel, the buttons on a row of their
+            // own: a 420-point field and its buttons on one row ran past
+            // the panel's edge in a 900 × 600 window, and "Open this file"
+            // lay under the Solver panel, where a click did nothing
+            // (issue 66: "File ▸ Open does nothing while a banner is up")
+            let entered = ui
+                .horizontal(|ui| {
+                    let label = ui.label("Path");
+                    let width = ui.available_width().min(420.0);
+                    let field = ui
+                        .add(
+                            egui::TextEdit::singleline(&mut prompt.path)
+                                .desired_width(width)
+                                .hint_text("path/to/file"),
+                        )
+                        .labelled_by(label.id);
+                    field.lost_focus() && ui.input(|i| i.key_pressed(Key::Enter))
+                })
+                .inner;
             ui.horizontal(|ui| {
-                let label = ui.label("Path");
-                let field = ui
-                    .add(
-                        egui::TextEdit::singleline(&mut prompt.path)
-                            .desired_width(420.0)
-                            .hint_text("path/to/file"),
-                    )
-                    .labelled_by(label.id);
-                let entered = field.lost_focus() && ui.input(|i| i.key_pressed(Key::Enter));
                 if ui.button(prompt.button()).clicked() || entered {
                     cmds.push(Command::UseTypedPath);
                 }

@@ -399,6 +399,12 @@ impl WorkbenchApp {
     pub fn run_story(&self) -> Option<crate::story::Story> {
         crate::story::story(self.runner.view(), &self.scene)
     }
+    /// The simulated cracks as the panels name them ("Crack 1", "Crack 1 ·
+    /// secondary 1", "Rock crack 3").
+    pub fn crack_names(&self) -> Vec<String> {
+        let v = self.runner.view();
+        (0..v.cracks.len()).map(|c| v.crack_name(c)).collect()
+    }
     /// The first link between two flaws in the run shown, if any.
     pub fn coalescence(&self) -> Option<&cdca::report::CoalescenceReport> {
         self.runner.view().coalescence.as_ref()

@@ -1509,10 +1509,16 @@ fn a_scene_saved_mid_growth_reopens_and_grows_the_identical_next_step() {
         reopened.state().message()
     );
     grow_one_step(&mut reopened);
+    // the saved steps (`growth.resume.history`: their λ and events), then
+    // the one grown now
     let history = reopened.state().growth_history();
-    assert_eq!(history.len(), 1);
-    assert_eq!(history[0].step, done + 1);
-    assert_eq!(step_bits(&history[0]), step_bits(&went_on));
+    let steps: Vec<usize> = history.iter().map(|s| s.step).collect();
+    assert_eq!(steps, (1..=done + 1).collect::<Vec<_>>());
+    for (saved, ran) in history.iter().zip(h.state().growth_history()) {
+        assert_eq!(saved.load_factor.to_bits(), ran.load_factor.to_bits());
+        assert_eq!(saved.grown, ran.grown);
+    }
+    assert_eq!(step_bits(&history[done]), step_bits(&went_on));
     assert_eq!(
         reopened.state().simulated_cracks(),
         h.state().simulated_cracks()
@@ -2166,6 +2172,7 @@ fn a_flaw_end_grown_in_shear_is_drawn_as_a_secondary_crack() {
             ends: [Part::Secondary, Part::Wing],
         }],
         rock_starts: None,
+        history: Vec::new(),
     });
     let mut h = opened_unsolved("sheared_end.json", scene.to_json().expect("JSON"));
     assert!(h.state().message().is_none(), "{:?}", h.state().message());

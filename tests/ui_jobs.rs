@@ -583,11 +583,12 @@ fn last_x(csv: &str) -> f64 {
 /// reopened used to say "Growth steps 1" after Grow one step, while its
 /// Angles plot put that step at x = 2: the reports number steps on from
 /// the resumed run's (`steps_before`), the status counted this
-/// simulation's. Now the status says 1 on opening (with the plots saying
-/// that they start after step 1) and 2 after the step, the x of the
-/// Angles plot's last point (the default scene's second step extends its
-/// wings, so it has an angle). The status counts the saved steps before
-/// anything is solved, too.
+/// simulation's. Now the status says 1 on opening and 2 after the step,
+/// the x of the Angles plot's last point (the default scene's second step
+/// extends its wings, so it has an angle); the saved step is plotted at
+/// x = 1 from its events (`growth.resume.history`, issue 66), and a file
+/// without them says that its plots start after step 1. The status counts
+/// the saved steps before anything is solved, too.
 #[test]
 #[cfg_attr(
     debug_assertions,
@@ -614,7 +615,30 @@ fn a_reopened_run_counts_its_steps_as_its_plots_place_them() {
     unsolved.run_steps(2);
     assert!(!unsolved.state().is_solved());
     assert_eq!(unsolved.state().growth_steps(), 1, "unsolved, reopened");
+    // a file without the steps' events (`growth.resume.history`, which
+    // older versions did not write) plots from its next step on, and says so
+    let mut older: serde_json::Value = serde_json::from_str(&saved).expect("JSON");
+    let dropped = older["growth"]["resume"]
+        .as_object_mut()
+        .and_then(|r| r.remove("history"));
+    assert!(dropped.is_some(), "the saved file holds the history");
+    unsolved.state_mut().push(Command::OpenSceneText {
+        source: "older.json".to_owned(),
+        text: older.to_string(),
+    });
+    unsolved.run_steps(2);
+    unsolved.get_by_label("Angles").click();
+    unsolved.run_steps(2);
+    unsolved.get_by_label_contains("This run resumes after growth step 1");
 
+    let angles = |app: &cdca_workbench::WorkbenchApp| {
+        app.table_csv(Export::Plot {
+            tab: PlotTab::Angles,
+            index: 0,
+            format: PlotFormat::Csv,
+        })
+        .expect("the Angles plot has points")
+    };
     let mut reopened = harness(Options::default());
     reopened.run_steps(3);
     reopened.state_mut().push(Command::OpenSceneText {
@@ -626,20 +650,15 @@ fn a_reopened_run_counts_its_steps_as_its_plots_place_them() {
     reopened.get_by_label("Angles").click();
     reopened.run_steps(2);
     assert_eq!(reopened.state().growth_steps(), 1, "the saved run's steps");
-    reopened.get_by_label_contains("This run resumes after growth step 1");
+    let plotted = angles(reopened.state());
+    assert_eq!(last_x(&plotted), 1.0, "the saved step's wings: {plotted}");
     grow(&mut reopened, "Grow one step");
     let app = reopened.state();
     assert!(app.message().is_none(), "{:?}", app.message());
-    assert_eq!(app.growth_history().len(), 1, "one step in this simulation");
+    assert_eq!(app.growth_history().len(), 2, "the saved step and this one");
     assert_eq!(app.growth_steps(), 2, "the status counts the saved steps");
-    let angles = app
-        .table_csv(Export::Plot {
-            tab: PlotTab::Angles,
-            index: 0,
-            format: PlotFormat::Csv,
-        })
-        .expect("the Angles plot has points");
-    assert_eq!(last_x(&angles), 2.0, "the plot's last step: {angles}");
+    let plotted = angles(app);
+    assert_eq!(last_x(&plotted), 2.0, "the plot's last step: {plotted}");
 }
 
 /// The tip inspector's polar plot fits the window: at 1400 × 900 on the

@@ -1525,6 +1525,52 @@ fn a_scene_saved_mid_growth_reopens_and_grows_the_identical_next_step() {
     );
 }
 
+/// A link shares the scene as drawn, never the run (issue 66): after two
+/// growth steps Copy link carries the Scene panel's scene (the flaw as
+/// drawn, no `growth.resume`), not the run's state that File ▸ Save
+/// writes; the menu says so beside the button; Reset, and an edit, take
+/// the link out of the page address.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn a_link_after_a_run_shares_the_scene_as_drawn() {
+    let mut h = harness(Options::default());
+    h.run_steps(5);
+    let drawn = h.state().scene().clone();
+    grow_one_step(&mut h);
+    grow_one_step(&mut h);
+    let run = cdca::Scene::from_json(&h.state().scene_file().expect("the run saves"))
+        .expect("valid")
+        .into_file();
+    assert!(run.growth.resume.is_some() && run.cracks != drawn.cracks);
+    h.get_by_label("File").click();
+    h.run();
+    h.get_by_label_contains("The scene as drawn, not the run");
+    h.get_by_label("Copy link to this scene").click();
+    h.run();
+    let link = h.state().scene_link().expect("a link");
+    assert_eq!(cdca_workbench::link::from_link(&link), Some(Ok(drawn)));
+    assert!(h.state().address_holds_link());
+    match h.state().message() {
+        Some(Message::Info(m)) => assert!(
+            m.starts_with("Link to the scene as drawn (not the run)"),
+            "{m}"
+        ),
+        m => panic!("{m:?}"),
+    }
+    h.state_mut().push(Command::Reset);
+    h.run();
+    assert!(!h.state().address_holds_link(), "Reset takes it out");
+    h.state_mut().push(Command::CopyLink);
+    h.run();
+    assert!(h.state().address_holds_link());
+    edit_scene(&mut h, |s| s.cracks[0].friction = 0.3);
+    h.run();
+    assert!(!h.state().address_holds_link(), "an edit takes it out");
+}
+
 /// An edge crack in a plate pulled on top (roller at the bottom): two
 /// critical steps take it through to the right side, and the upper half,
 /// held by nothing, is free to move away. (Whether the direct solver's

@@ -14,6 +14,10 @@ use crate::scenes::BUNDLED;
 use crate::units;
 use crate::view::{AppView, Message, ViewState};
 
+/// What Copy link shares, said beside it (see [`crate::link`]).
+const LINK_SHARES: &str = "The scene as drawn, not the run (its grown cracks, story and \
+     plots stay here). An edit or Reset takes the link out of the address.";
+
 const UNDO: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Z);
 const REDO: KeyboardShortcut =
     KeyboardShortcut::new(Modifiers::COMMAND.plus(Modifiers::SHIFT), Key::Z);
@@ -41,11 +45,15 @@ pub fn menu_bar_ui(ui: &mut Ui, v: &AppView, s: &mut ViewState, cmds: &mut Vec<C
             }
             if ui
                 .button("Copy link to this scene")
-                .on_hover_text("The scene in a web address (#scene=…): whoever opens it sees the same crack layout, solved")
+                .on_hover_text(
+                    "The scene as drawn in a web address (#scene=…): whoever opens it sees \
+                     the same crack layout, solved, and can run it",
+                )
                 .clicked()
             {
                 cmds.push(Command::CopyLink);
             }
+            ui.weak(LINK_SHARES);
             ui.separator();
             let exports = [
                 ("Export crack paths (CSV)…", Export::CrackPaths),

@@ -85,7 +85,7 @@ pub fn read_count(text: &str, name: &str, kept: usize) -> Result<usize, String> 
     digits.parse().map_err(|_| {
         if egui_number(text).is_some() {
             format!(
-                "{name}: {} is not a whole number of elements. It stays {kept}.",
+                "{name}: {} is not a whole number. It stays {kept}.",
                 text.trim()
             )
         } else {
@@ -340,7 +340,7 @@ mod tests {
         assert_eq!(read_count("100 000", "Elements along x", 60), Ok(100_000));
         assert_eq!(
             read_count("2.5", "Elements along x", 60),
-            Err("Elements along x: 2.5 is not a whole number of elements. It stays 60.".into())
+            Err("Elements along x: 2.5 is not a whole number. It stays 60.".into())
         );
         assert_eq!(
             outside_range(&width, 0.2, 1.0, 100.0, "30 mm"),

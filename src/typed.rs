@@ -94,31 +94,35 @@ pub fn read_count(text: &str, name: &str, kept: usize) -> Result<usize, String> 
     })
 }
 
-/// The refusal of a value outside the field's own range (`low..=high`,
+/// The refusal of a value outside the field's own range (`(low, high)`,
 /// display units), checked after the solver crate's rules: the panel's
 /// limits on what it meshes and draws.
-pub fn outside_range(field: &Shown, si: f64, low: f64, high: f64, kept: &str) -> Option<String> {
+pub fn outside_range(
+    field: &Shown,
+    si: f64,
+    (low, high): (f64, f64),
+    kept: &str,
+) -> Option<String> {
     let v = si / field.per_unit;
-    let (word, limit) = if v < low {
-        ("below", low)
+    let (word, limit, extreme) = if v < low {
+        ("below", low, "least")
     } else if v > high {
-        ("above", high)
+        ("above", high, "most")
     } else {
         return None;
     };
     Some(format!(
-        "{}: {} is {word} {}, the {} this field takes. It stays {kept}.",
+        "{}: {} is {word} {}, the {extreme} this field takes. It stays {kept}.",
         field.name,
         field.with_unit(units::compact(v)),
         field.with_unit(units::compact(limit)),
-        if word == "below" { "least" } else { "most" },
     ))
 }
 
 /// Why the scene `edited` (one typed value changed from `scene`) is
-/// refused, or `None` when the solver crate's checks take it: they fail
-/// on it and did not on `scene`, or failed differently. (A scene that a
-/// drag left invalid still takes typed values elsewhere.) `name` and
+/// refused: the solver crate's checks fail on it, and passed on `scene`
+/// or failed there on something else (a scene a drag left invalid still
+/// takes typed values elsewhere); `None` when they take it. `name` and
 /// `kept` are the typed field's name and the value it keeps.
 pub fn refusal(scene: &SceneFile, edited: &SceneFile, name: &str, kept: &str) -> Option<String> {
     let error = cdca::Scene::try_from(edited.clone()).err()?;
@@ -343,11 +347,11 @@ mod tests {
             Err("Elements along x: 2.5 is not a whole number. It stays 60.".into())
         );
         assert_eq!(
-            outside_range(&width, 0.2, 1.0, 100.0, "30 mm"),
+            outside_range(&width, 0.2, (1.0, 100.0), "30 mm"),
             Some(
                 "Width: 200 mm is above 100 mm, the most this field takes. It stays 30 mm.".into()
             )
         );
-        assert_eq!(outside_range(&width, 0.02, 1.0, 100.0, "30 mm"), None);
+        assert_eq!(outside_range(&width, 0.02, (1.0, 100.0), "30 mm"), None);
     }
 }

@@ -36,13 +36,31 @@ pub struct Typed {
     /// The value the field keeps if the typed one is refused, with its
     /// unit.
     pub kept: String,
-    /// Why the typed value is refused by the field itself: not a number,
-    /// or outside the field's range (checked after the solver crate's
-    /// rules, whose words come first).
+    /// Why the field itself refuses the typed value: not a number, or
+    /// outside the field's range.
     pub refused: Option<String>,
-    /// Whether `refused` is a range the solver crate's rules may speak
-    /// for first, or the value never reached the scene.
+    /// Whether the value was written into the draft scene (it is a
+    /// number): the solver crate's checks of that scene then speak
+    /// before the field's range.
     pub in_scene: bool,
+}
+
+impl Typed {
+    /// The value typed into the field `shown`, which keeps `kept`: `read`
+    /// is the number in SI (written into the draft) or why it is not
+    /// one; a number is held to the field's `range` (display units).
+    fn new(shown: Shown, kept: String, read: Result<f64, String>, range: (f64, f64)) -> Self {
+        let (refused, in_scene) = match read {
+            Ok(si) => (typed::outside_range(&shown, si, range, &kept), true),
+            Err(refusal) => (Some(refusal), false),
+        };
+        Self {
+            name: shown.name,
+            kept,
+            refused,
+            in_scene,
+        }
+    }
 }
 
 impl EditTracker {
@@ -119,19 +137,11 @@ fn quantity_field(
     t.track(&r);
     if let Some(text) = text.into_inner() {
         let kept = shown.value(*value_si);
-        let (refused, in_scene) = match typed::read_number(&text, &shown, *value_si) {
-            Ok(si) => {
-                *value_si = si;
-                (typed::outside_range(&shown, si, low, high, &kept), true)
-            }
-            Err(refusal) => (Some(refusal), false),
-        };
-        t.typed = Some(Typed {
-            name: shown.name,
-            kept,
-            refused,
-            in_scene,
-        });
+        let read = typed::read_number(&text, &shown, *value_si);
+        if let Ok(si) = read {
+            *value_si = si;
+        }
+        t.typed = Some(Typed::new(shown, kept, read, (low, high)));
     }
 }
 
@@ -152,20 +162,12 @@ pub fn count_row(
     if let Some(text) = text.into_inner() {
         let shown = t.shown(label, 1.0, "");
         let kept = value.to_string();
-        let (refused, in_scene) = match typed::read_count(&text, &shown.name, *value) {
-            Ok(n) => {
-                *value = n;
-                let range = typed::outside_range(&shown, n as f64, low as f64, high as f64, &kept);
-                (range, true)
-            }
-            Err(refusal) => (Some(refusal), false),
-        };
-        t.typed = Some(Typed {
-            name: shown.name,
-            kept,
-            refused,
-            in_scene,
-        });
+        let read = typed::read_count(&text, &shown.name, *value);
+        if let Ok(n) = read {
+            *value = n;
+        }
+        let range = (low as f64, high as f64);
+        t.typed = Some(Typed::new(shown, kept, read.map(|n| n as f64), range));
     }
     ui.end_row();
 }

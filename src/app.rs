@@ -170,6 +170,8 @@ pub struct WorkbenchApp {
     pub(crate) waiting: Option<Waiting>,
     /// The path field shown where no file dialog could open.
     pub(crate) path_prompt: Option<PathPrompt>,
+    /// The scene link the page address holds (the browser's).
+    pub(crate) address: crate::link::Address,
     /// The folder last saved to or opened from: where the next Save and
     /// Open start.
     pub(crate) last_folder: Option<std::path::PathBuf>,
@@ -252,6 +254,7 @@ impl WorkbenchApp {
             started: false,
             waiting: None,
             path_prompt: None,
+            address: crate::link::Address::default(),
             last_folder: None,
             replay_step: None,
             plots_overhead: 60.0,
@@ -408,6 +411,12 @@ impl WorkbenchApp {
     pub fn run_story(&self) -> Option<crate::story::Story> {
         crate::story::story(self.runner.view(), &self.scene)
     }
+    /// The simulated cracks as the panels name them ("Crack 1", "Crack 1 ·
+    /// secondary 1", "Rock crack 3").
+    pub fn crack_names(&self) -> Vec<String> {
+        let v = self.runner.view();
+        (0..v.cracks.len()).map(|c| v.crack_name(c)).collect()
+    }
     /// The first link between two flaws in the run shown, if any.
     pub fn coalescence(&self) -> Option<&cdca::report::CoalescenceReport> {
         self.runner.view().coalescence.as_ref()
@@ -502,6 +511,17 @@ impl WorkbenchApp {
         };
         scene.to_json().map_err(|e| e.to_string())
     }
+    /// The link Copy link shares (its fragment, `scene=…`): the scene as
+    /// drawn, never a run's state (see [`crate::link`]).
+    pub fn scene_link(&self) -> Result<String, String> {
+        let json = self.scene.to_json().map_err(|e| e.to_string())?;
+        Ok(crate::link::to_fragment(&json))
+    }
+    /// Whether the page address holds a link to the scene on screen (in
+    /// the browser; natively what it would hold).
+    pub fn address_holds_link(&self) -> bool {
+        self.address.is_held()
+    }
     /// The stress samples of the field the canvas shows (σ_xx, σ_yy, τ_xy).
     pub fn shown_stresses(&self) -> Vec<[f64; 3]> {
         self.runner
@@ -587,7 +607,11 @@ impl WorkbenchApp {
         self.layout.apply_text_scale(ctx);
         self.take_dropped_files(ctx);
         for cmd in std::mem::take(&mut self.commands) {
+            let reset = matches!(cmd, Command::Reset);
             self.run_cmd(ctx, cmd);
+            if self.address.went_stale(&self.scene, reset) {
+                crate::io::clear_link();
+            }
         }
         if !self.painted_once {
             // the first frame shows the scene's geometry and the controls

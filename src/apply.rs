@@ -221,6 +221,7 @@ impl WorkbenchApp {
                 self.no_tip_wanted = tip.is_none();
             }
             Command::DismissMessage => self.message = None,
+            Command::Refuse(why) => self.message = Some(Message::Error(why)),
             Command::CancelJob => self.cancel_job(),
             Command::StartWaiting => {
                 if let Some(w) = self.waiting.take() {
@@ -436,6 +437,7 @@ impl WorkbenchApp {
     fn open_link(&mut self, link: &str) {
         let problem = match crate::link::from_link(link) {
             Some(Ok(scene)) => {
+                self.address.holds(scene.clone());
                 self.open_scene("shared link".to_owned(), scene);
                 return;
             }
@@ -448,11 +450,13 @@ impl WorkbenchApp {
         )));
     }
 
-    /// The scene as File ▸ Save writes it, as a link (see [`crate::link`]).
+    /// The scene as drawn (the Scene panel's, never a run's state), as a
+    /// link (see [`crate::link`]).
     fn copy_link(&mut self, ctx: &egui::Context) {
-        let result = self
-            .scene_file()
-            .map(|json| io::share_link(ctx, &crate::link::to_fragment(&json)));
+        let result = self.scene_link().map(|fragment| {
+            self.address.holds(self.scene.clone());
+            io::share_link(ctx, &fragment)
+        });
         self.message = Some(match result {
             Ok(text) => Message::Info(text),
             Err(e) => Message::Error(format!("No link: {e}")),
@@ -783,6 +787,7 @@ fn touches_simulation(cmd: &Command) -> bool {
         Command::Replay(_)
             | Command::SelectTip(_)
             | Command::DismissMessage
+            | Command::Refuse(_)
             | Command::CancelTypedPath
             | Command::DropWaiting
             | Command::SetAccelerateGrowth(_)

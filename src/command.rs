@@ -124,6 +124,9 @@ pub enum Command {
     /// Inspect tip `i` of the current solution's tips (None: close).
     SelectTip(Option<usize>),
     DismissMessage,
+    /// A value typed into the Scene panel is not taken: show why (the
+    /// scene stays as it was).
+    Refuse(String),
     /// Use the path typed where no file dialog could open.
     UseTypedPath,
     /// Close the path field without saving or opening.

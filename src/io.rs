@@ -45,19 +45,25 @@ fn nothing_picked<T>(start: web_time::Instant) -> Picked<T> {
     }
 }
 
-/// Asks for a scene file and reads it. `Ok(None)` when the user cancels.
 /// Copies a scene link's fragment (`scene=…`) to the clipboard; returns
 /// what to tell the user.
 #[cfg(not(target_arch = "wasm32"))]
 pub fn share_link(ctx: &egui::Context, fragment: &str) -> String {
     ctx.copy_text(format!("#{fragment}"));
     format!(
-        "Scene link copied to the clipboard ({} characters): append it to the web \
-         workbench's address, or open it here with cdca-workbench --link",
+        "Link to the scene as drawn (not the run) copied to the clipboard ({} characters): \
+         append it to the web workbench's address, or open it here with cdca-workbench \
+         --link",
         fragment.len() + 1
     )
 }
 
+/// Takes a stale scene link out of the page address: natively there is
+/// none.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn clear_link() {}
+
+/// Asks for a scene file and reads it. `Ok(None)` when the user cancels.
 #[cfg(not(target_arch = "wasm32"))]
 pub fn open_scene_dialog(last: Option<&std::path::Path>) -> Result<Picked<OpenedFile>, String> {
     let start = web_time::Instant::now();
@@ -175,9 +181,19 @@ pub fn share_link(ctx: &egui::Context, fragment: &str) -> String {
     let href = location.href().unwrap_or_default();
     ctx.copy_text(href.clone());
     format!(
-        "Link copied to the clipboard ({} characters); the page address now opens this scene",
+        "Link to the scene as drawn (not the run) copied to the clipboard ({} characters); \
+         the page address opens this scene until it is edited or reset",
         href.len()
     )
+}
+
+/// Takes a stale scene link out of the page address: an empty fragment,
+/// no reload (the address keeps a bare `#`).
+#[cfg(target_arch = "wasm32")]
+pub fn clear_link() {
+    if let Some(location) = web_sys::window().map(|w| w.location()) {
+        let _ = location.set_hash("");
+    }
 }
 
 /// The browser has no file system to write a typed-in path to (its

@@ -36,6 +36,7 @@ pub mod study;
 pub mod study_file;
 mod study_map;
 mod task;
+mod typed;
 mod undo;
 mod units;
 mod view;

@@ -4,6 +4,14 @@
 //! A teacher sends one link and the class opens the same crack layout. The
 //! browser wrapper reads and writes `location.hash`; the native workbench
 //! opens a link with `--link`.
+//!
+//! A link shares the scene as drawn (the Scene panel's), never the run: a
+//! run's end state in a link made its grown cracks drawn ones and lost the
+//! story, replay and plots (a 20.7k-character link), while the scene
+//! opens and runs to the same end. The address keeps a link only while it
+//! shows the scene being edited ([`Address`]): an edit, another scene or
+//! Reset takes it out, so that a reload or a copied address never opens
+//! something other than what is on screen.
 
 use base64::Engine as _;
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
@@ -30,6 +38,38 @@ pub fn from_link(link: &str) -> Option<Result<SceneFile, String>> {
     let fragment = link.split_once('#').map_or(link, |(_, f)| f);
     let data = fragment.split('&').find_map(|p| p.strip_prefix(KEY))?;
     Some(decode(data))
+}
+
+/// The scene link the page address holds (Copy link put it there, or the
+/// page opened with it), while it still shows the scene being edited.
+#[derive(Debug, Default)]
+pub struct Address {
+    shared: Option<SceneFile>,
+}
+
+impl Address {
+    /// The address now holds a link to `scene`.
+    pub fn holds(&mut self, scene: SceneFile) {
+        self.shared = Some(scene);
+    }
+
+    /// Whether the address holds a link.
+    pub fn is_held(&self) -> bool {
+        self.shared.is_some()
+    }
+
+    /// Whether the address's link went stale with a command that left
+    /// `scene` being edited: the scene differs from the linked one (an
+    /// edit, an undo, another scene opened), or the command was Reset (a
+    /// run's reset is a new start). A stale link is forgotten: the caller
+    /// takes it out of the address, once.
+    pub fn went_stale(&mut self, scene: &SceneFile, reset: bool) -> bool {
+        let stale = self.shared.as_ref().is_some_and(|s| reset || s != scene);
+        if stale {
+            self.shared = None;
+        }
+        stale
+    }
 }
 
 fn decode(data: &str) -> Result<SceneFile, String> {
@@ -75,6 +115,25 @@ mod tests {
         ] {
             assert_eq!(from_link(&link), Some(Ok(s.clone())), "{link}");
         }
+    }
+
+    /// The address keeps its link while the scene is the linked one, and
+    /// lets it go (once) at an edit or a Reset; without a link there is
+    /// nothing to take out.
+    #[test]
+    fn an_edit_or_reset_takes_the_link_out_of_the_address() {
+        let mut address = Address::default();
+        let linked = scene();
+        assert!(!address.went_stale(&linked, true), "no link held");
+        address.holds(linked.clone());
+        assert!(!address.went_stale(&linked, false), "the same scene");
+        let mut edited = linked.clone();
+        edited.cracks[0].friction = 0.4;
+        assert!(address.went_stale(&edited, false), "an edit");
+        assert!(!address.went_stale(&linked, false), "taken out once");
+        address.holds(linked.clone());
+        assert!(address.went_stale(&linked, true), "Reset");
+        assert!(!address.went_stale(&edited, true), "taken out once");
     }
 
     /// A link without a scene is not an error; a truncated, damaged or

@@ -364,7 +364,14 @@ impl Runner {
         self.replay.clear();
         // a reopened run's steps count before anything is solved, as
         // `Simulation::steps_done` counts them once it is built
-        self.view.steps_done = scene.growth.resume.as_ref().map_or(0, |r| r.steps);
+        // and their events (`growth.resume.history`), as
+        // `Simulation::earlier` holds them once it is built (which names a
+        // bad entry)
+        let resume = scene.growth.resume.as_ref();
+        self.view.steps_done = resume.map_or(0, |r| r.steps);
+        self.view.earlier = resume
+            .and_then(|r| cdca::report::StepEvents::read(r, scene.cracks.len()).ok())
+            .unwrap_or_default();
         self.field.clear();
         self.check(scene)
     }

@@ -148,8 +148,10 @@ impl SolutionView {
         };
         self.strength = self.outcome.and_then(|o| sim.strength(o));
         self.coalescence = sim.coalescence();
+        // (the link may be in the steps of a run this scene resumes)
         self.junction = self.coalescence.as_ref().and_then(|c| {
-            let link = history
+            let link = self
+                .history
                 .iter()
                 .find(|s| s.step == c.step)?
                 .links

@@ -63,7 +63,8 @@ pub fn story(view: &SolutionView, scene: &SceneFile) -> Option<Story> {
         ));
     }
     events.sort_by_key(|(step, _)| *step);
-    let mut lines: Vec<String> = events.into_iter().map(|(_, line)| line).collect();
+    let mut lines: Vec<String> = untold(view).into_iter().collect();
+    lines.extend(events.into_iter().map(|(_, line)| line));
     if view.coalescence.is_none() && flaws >= 2 {
         lines.push("The flaws did not link.".to_owned());
     }
@@ -118,6 +119,23 @@ fn ending(
         }
         Outcome::Error => "Stopped: a step's solve failed with an error.".to_owned(),
     }
+}
+
+/// The steps before the first one the view holds: those of a run saved
+/// in a scene file without their history (`growth.resume.history`, which
+/// older versions did not write), which the story cannot tell.
+fn untold(view: &SolutionView) -> Option<String> {
+    let first = view.history.first()?.step;
+    let steps = match first {
+        0 | 1 => return None,
+        2 => "Step 1".to_owned(),
+        _ => format!("Steps 1–{}", first - 1),
+    };
+    Some(format!(
+        "{steps} ran before this scene was saved, in a file without their history \
+         (growth.resume.history): the story, the peak and the link are told from step \
+         {first} on."
+    ))
 }
 
 /// The first wing, secondary crack and crack in the intact rock (those the

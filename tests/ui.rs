@@ -1509,14 +1509,66 @@ fn a_scene_saved_mid_growth_reopens_and_grows_the_identical_next_step() {
         reopened.state().message()
     );
     grow_one_step(&mut reopened);
+    // the saved steps (`growth.resume.history`: their λ and events), then
+    // the one grown now
     let history = reopened.state().growth_history();
-    assert_eq!(history.len(), 1);
-    assert_eq!(history[0].step, done + 1);
-    assert_eq!(step_bits(&history[0]), step_bits(&went_on));
+    let steps: Vec<usize> = history.iter().map(|s| s.step).collect();
+    assert_eq!(steps, (1..=done + 1).collect::<Vec<_>>());
+    for (saved, ran) in history.iter().zip(h.state().growth_history()) {
+        assert_eq!(saved.load_factor.to_bits(), ran.load_factor.to_bits());
+        assert_eq!(saved.grown, ran.grown);
+    }
+    assert_eq!(step_bits(&history[done]), step_bits(&went_on));
     assert_eq!(
         reopened.state().simulated_cracks(),
         h.state().simulated_cracks()
     );
+}
+
+/// A link shares the scene as drawn, never the run (issue 66): after two
+/// growth steps Copy link carries the Scene panel's scene (the flaw as
+/// drawn, no `growth.resume`), not the run's state that File ▸ Save
+/// writes; the menu says so beside the button; Reset, and an edit, take
+/// the link out of the page address.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn a_link_after_a_run_shares_the_scene_as_drawn() {
+    let mut h = harness(Options::default());
+    h.run_steps(5);
+    let drawn = h.state().scene().clone();
+    grow_one_step(&mut h);
+    grow_one_step(&mut h);
+    let run = cdca::Scene::from_json(&h.state().scene_file().expect("the run saves"))
+        .expect("valid")
+        .into_file();
+    assert!(run.growth.resume.is_some() && run.cracks != drawn.cracks);
+    h.get_by_label("File").click();
+    h.run();
+    h.get_by_label_contains("The scene as drawn, not the run");
+    h.get_by_label("Copy link to this scene").click();
+    h.run();
+    let link = h.state().scene_link().expect("a link");
+    assert_eq!(cdca_workbench::link::from_link(&link), Some(Ok(drawn)));
+    assert!(h.state().address_holds_link());
+    match h.state().message() {
+        Some(Message::Info(m)) => assert!(
+            m.starts_with("Link to the scene as drawn (not the run)"),
+            "{m}"
+        ),
+        m => panic!("{m:?}"),
+    }
+    h.state_mut().push(Command::Reset);
+    h.run();
+    assert!(!h.state().address_holds_link(), "Reset takes it out");
+    h.state_mut().push(Command::CopyLink);
+    h.run();
+    assert!(h.state().address_holds_link());
+    edit_scene(&mut h, |s| s.cracks[0].friction = 0.3);
+    h.run();
+    assert!(!h.state().address_holds_link(), "an edit takes it out");
 }
 
 /// An edge crack in a plate pulled on top (roller at the bottom): two
@@ -2166,6 +2218,7 @@ fn a_flaw_end_grown_in_shear_is_drawn_as_a_secondary_crack() {
             ends: [Part::Secondary, Part::Wing],
         }],
         rock_starts: None,
+        history: Vec::new(),
     });
     let mut h = opened_unsolved("sheared_end.json", scene.to_json().expect("JSON"));
     assert!(h.state().message().is_none(), "{:?}", h.state().message());

@@ -583,11 +583,12 @@ fn last_x(csv: &str) -> f64 {
 /// reopened used to say "Growth steps 1" after Grow one step, while its
 /// Angles plot put that step at x = 2: the reports number steps on from
 /// the resumed run's (`steps_before`), the status counted this
-/// simulation's. Now the status says 1 on opening (with the plots saying
-/// that they start after step 1) and 2 after the step, the x of the
-/// Angles plot's last point (the default scene's second step extends its
-/// wings, so it has an angle). The status counts the saved steps before
-/// anything is solved, too.
+/// simulation's. Now the status says 1 on opening and 2 after the step,
+/// the x of the Angles plot's last point (the default scene's second step
+/// extends its wings, so it has an angle); the saved step is plotted at
+/// x = 1 from its events (`growth.resume.history`, issue 66), and a file
+/// without them says that its plots start after step 1. The status counts
+/// the saved steps before anything is solved, too.
 #[test]
 #[cfg_attr(
     debug_assertions,
@@ -614,7 +615,30 @@ fn a_reopened_run_counts_its_steps_as_its_plots_place_them() {
     unsolved.run_steps(2);
     assert!(!unsolved.state().is_solved());
     assert_eq!(unsolved.state().growth_steps(), 1, "unsolved, reopened");
+    // a file without the steps' events (`growth.resume.history`, which
+    // older versions did not write) plots from its next step on, and says so
+    let mut older: serde_json::Value = serde_json::from_str(&saved).expect("JSON");
+    let dropped = older["growth"]["resume"]
+        .as_object_mut()
+        .and_then(|r| r.remove("history"));
+    assert!(dropped.is_some(), "the saved file holds the history");
+    unsolved.state_mut().push(Command::OpenSceneText {
+        source: "older.json".to_owned(),
+        text: older.to_string(),
+    });
+    unsolved.run_steps(2);
+    unsolved.get_by_label("Angles").click();
+    unsolved.run_steps(2);
+    unsolved.get_by_label_contains("This run resumes after growth step 1");
 
+    let angles = |app: &cdca_workbench::WorkbenchApp| {
+        app.table_csv(Export::Plot {
+            tab: PlotTab::Angles,
+            index: 0,
+            format: PlotFormat::Csv,
+        })
+        .expect("the Angles plot has points")
+    };
     let mut reopened = harness(Options::default());
     reopened.run_steps(3);
     reopened.state_mut().push(Command::OpenSceneText {
@@ -626,20 +650,15 @@ fn a_reopened_run_counts_its_steps_as_its_plots_place_them() {
     reopened.get_by_label("Angles").click();
     reopened.run_steps(2);
     assert_eq!(reopened.state().growth_steps(), 1, "the saved run's steps");
-    reopened.get_by_label_contains("This run resumes after growth step 1");
+    let plotted = angles(reopened.state());
+    assert_eq!(last_x(&plotted), 1.0, "the saved step's wings: {plotted}");
     grow(&mut reopened, "Grow one step");
     let app = reopened.state();
     assert!(app.message().is_none(), "{:?}", app.message());
-    assert_eq!(app.growth_history().len(), 1, "one step in this simulation");
+    assert_eq!(app.growth_history().len(), 2, "the saved step and this one");
     assert_eq!(app.growth_steps(), 2, "the status counts the saved steps");
-    let angles = app
-        .table_csv(Export::Plot {
-            tab: PlotTab::Angles,
-            index: 0,
-            format: PlotFormat::Csv,
-        })
-        .expect("the Angles plot has points");
-    assert_eq!(last_x(&angles), 2.0, "the plot's last step: {angles}");
+    let plotted = angles(app);
+    assert_eq!(last_x(&plotted), 2.0, "the plot's last step: {plotted}");
 }
 
 /// The tip inspector's polar plot fits the window: at 1400 × 900 on the
@@ -1165,4 +1184,64 @@ fn the_replay_shows_each_marked_step_as_the_run_had_it() {
         h.run_steps(2);
     }
     assert_eq!(h.state().canvas_cracks(), after[steps], "the end");
+}
+
+/// File ▸ Open works while a banner is up (issue 66: it did nothing): an
+/// error banner from a bad file, then File ▸ Open scene… asks for the path
+/// and opens the file typed, in windows from wide to narrow (the path row
+/// ran past the panel's edge at 900 × 600, its button under the Solver
+/// panel).
+#[test]
+fn file_open_works_while_a_banner_is_up() {
+    for size in [
+        [1400.0, 900.0],
+        [900.0, 600.0],
+        [600.0, 800.0],
+        [420.0, 760.0],
+    ] {
+        open_with_a_banner_up(size);
+    }
+}
+
+/// Opens a file through the path field of a `size` window, an error
+/// banner up.
+fn open_with_a_banner_up(size: [f32; 2]) {
+    let mut h = support::harness_sized(
+        size,
+        Options {
+            file_dialogs: false,
+            ..no_solver()
+        },
+    );
+    h.run();
+    let mut scene = h.state().scene().clone();
+    scene.cracks[0].friction = 0.25;
+    let dir = std::env::temp_dir().join(format!("cdca_ui_banner_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary directory");
+    let path = dir.join("friction.json").display().to_string();
+    std::fs::write(&path, scene.to_json().expect("JSON")).expect("written");
+
+    h.state_mut().push(Command::OpenSceneText {
+        source: "broken.json".to_owned(),
+        text: "{ \"specimen\": ".to_owned(),
+    });
+    h.run();
+    h.get_by_label_contains("Could not open broken.json");
+    h.get_by_label("File").click();
+    h.run();
+    h.get_by_label("Open scene…").click();
+    h.run();
+    h.get_by_label_contains("Type the path of the scene file to open");
+    h.get_by_label("Path").focus();
+    h.run();
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.get_by_label("Path").type_text(&path);
+    h.run();
+    // a click lands where the button is drawn (egui_kittest clicks at its
+    // centre): at 900 × 600 it lay under the Solver panel
+    h.get_by_label("Open this file").click();
+    h.run();
+    assert_eq!(h.state().scene(), &scene, "{size:?}");
+    assert_eq!(h.state().typed_path(), None, "{size:?}: the field closes");
+    let _ = std::fs::remove_dir_all(&dir);
 }

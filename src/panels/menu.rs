@@ -14,6 +14,10 @@ use crate::scenes::BUNDLED;
 use crate::units;
 use crate::view::{AppView, Message, ViewState};
 
+/// What Copy link shares, said beside it (see [`crate::link`]).
+const LINK_SHARES: &str = "The scene as drawn, not the run (its grown cracks, story and \
+     plots stay here). An edit or Reset takes the link out of the address.";
+
 const UNDO: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Z);
 const REDO: KeyboardShortcut =
     KeyboardShortcut::new(Modifiers::COMMAND.plus(Modifiers::SHIFT), Key::Z);
@@ -41,11 +45,15 @@ pub fn menu_bar_ui(ui: &mut Ui, v: &AppView, s: &mut ViewState, cmds: &mut Vec<C
             }
             if ui
                 .button("Copy link to this scene")
-                .on_hover_text("The scene in a web address (#scene=…): whoever opens it sees the same crack layout, solved")
+                .on_hover_text(
+                    "The scene as drawn in a web address (#scene=…): whoever opens it sees \
+                     the same crack layout, solved, and can run it",
+                )
                 .clicked()
             {
                 cmds.push(Command::CopyLink);
             }
+            ui.weak(LINK_SHARES);
             ui.separator();
             let exports = [
                 ("Export crack paths (CSV)…", Export::CrackPaths),
@@ -334,16 +342,26 @@ pub fn path_prompt_ui(ui: &mut Ui, prompt: Option<&mut PathPrompt>, cmds: &mut V
         .stroke(egui::Stroke::new(1.5, color))
         .show(ui, |ui| {
             ui.colored_label(color, prompt.text());
+            // the field within the panel, the buttons on a row of their
+            // own: a 420-point field and its buttons on one row ran past
+            // the panel's edge in a 900 × 600 window, and "Open this file"
+            // lay under the Solver panel, where a click did nothing
+            // (issue 66: "File ▸ Open does nothing while a banner is up")
+            let entered = ui
+                .horizontal(|ui| {
+                    let label = ui.label("Path");
+                    let width = ui.available_width().min(420.0);
+                    let field = ui
+                        .add(
+                            egui::TextEdit::singleline(&mut prompt.path)
+                                .desired_width(width)
+                                .hint_text("path/to/file"),
+                        )
+                        .labelled_by(label.id);
+                    field.lost_focus() && ui.input(|i| i.key_pressed(Key::Enter))
+                })
+                .inner;
             ui.horizontal(|ui| {
-                let label = ui.label("Path");
-                let field = ui
-                    .add(
-                        egui::TextEdit::singleline(&mut prompt.path)
-                            .desired_width(420.0)
-                            .hint_text("path/to/file"),
-                    )
-                    .labelled_by(label.id);
-                let entered = field.lost_focus() && ui.input(|i| i.key_pressed(Key::Enter));
                 if ui.button(prompt.button()).clicked() || entered {
                     cmds.push(Command::UseTypedPath);
                 }

@@ -9,10 +9,11 @@ use cdca::scene::{
 };
 use egui::{CollapsingHeader, Grid, Ui};
 
-use super::widgets::{EditTracker, choice, count_row, optional_row, quantity_row};
+use super::widgets::{EditTracker, Typed, choice, count_row, optional_row, quantity_row};
 use crate::command::Command;
 use crate::edit::{Editor, Tool};
 use crate::solution::{SolutionView, polyline_length};
+use crate::typed;
 use crate::units::{self, MM_PER_M, PA_PER_GPA, PA_PER_MPA};
 
 const MM: f64 = 1.0 / MM_PER_M;
@@ -46,7 +47,14 @@ pub fn scene_ui(
     cracks_ui(ui, &mut draft, solution, editor, &mut t);
     criterion_ui(ui, &mut draft, &mut t);
     growth_ui(ui, &mut draft, &mut t);
-    if draft != *scene {
+    if let Some(refusal) = t
+        .typed
+        .take()
+        .and_then(|typed| refused(scene, &draft, typed))
+    {
+        // the scene stays as it was: the field shows its old value again
+        cmds.push(Command::Refuse(refusal));
+    } else if draft != *scene {
         cmds.push(Command::SetScene {
             scene: Box::new(draft),
             ongoing: t.ongoing,
@@ -54,6 +62,16 @@ pub fn scene_ui(
     } else if t.ended {
         cmds.push(Command::EndDrag);
     }
+}
+
+/// Why the value typed this frame is refused: not a number; else the
+/// solver crate's rules on the scene it makes (their words come first);
+/// else the field's own range.
+fn refused(scene: &SceneFile, draft: &SceneFile, typed: Typed) -> Option<String> {
+    if !typed.in_scene {
+        return typed.refused;
+    }
+    typed::refusal(scene, draft, &typed.name, &typed.kept).or(typed.refused)
 }
 
 fn specimen_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
@@ -189,6 +207,7 @@ fn side_ui(ui: &mut Ui, t: &mut EditTracker, name: &str, bc: &mut SideBc) {
         };
     }
     if let SideBc::Traction { normal, shear } = bc {
+        t.group = Some(name.to_owned());
         Grid::new(("traction", name)).num_columns(2).show(ui, |ui| {
             quantity_row(
                 ui,
@@ -201,6 +220,7 @@ fn side_ui(ui: &mut Ui, t: &mut EditTracker, name: &str, bc: &mut SideBc) {
             );
             quantity_row(ui, t, "  shear", shear, PA_PER_MPA, "MPa", -1e5..=1e5);
         });
+        t.group = None;
     }
 }
 
@@ -229,10 +249,12 @@ fn boundary_ui(ui: &mut Ui, s: &mut SceneFile, t: &mut EditTracker) {
                 CollapsingHeader::new(title)
                     .id_salt(("point support", i))
                     .show(ui, |ui| {
+                        t.group = Some(format!("Point support {}", i + 1));
                         Grid::new("point").num_columns(2).show(ui, |ui| {
                             quantity_row(ui, t, "x", &mut p.at[0], MM, "mm", -1e5..=1e5);
                             quantity_row(ui, t, "y", &mut p.at[1], MM, "mm", -1e5..=1e5);
                         });
+                        t.group = None;
                         choice(
                             ui,
                             "fixes",
@@ -301,6 +323,7 @@ fn cracks_ui(
                     .id_salt(("crack", i))
                     .default_open(selected)
                     .show(ui, |ui| {
+                        t.group = Some(format!("Crack {}", i + 1));
                         if faces_closed {
                             Grid::new(("crack grid", i)).num_columns(2).show(ui, |ui| {
                                 quantity_row(
@@ -371,6 +394,7 @@ fn cracks_ui(
                                     });
                                 });
                         }
+                        t.group = None;
                         grown_from_ui(ui, solution, i);
                         ui.horizontal(|ui| {
                             if ui

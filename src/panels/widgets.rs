@@ -2,12 +2,16 @@
 //! in SI, optional values with an "auto" box, and a tracker that turns
 //! widget responses into one scene edit per frame. A value outside a
 //! widget's range (from a scene file) is shown as it is, not clamped: only
-//! what the user edits is held to the range, so opening a scene never
-//! changes it.
+//! a drag is held to the range. A typed value is never clamped nor
+//! dropped: the tracker holds it, and the panel takes it or refuses it
+//! with a message ([`crate::typed`]).
 
+use std::cell::RefCell;
 use std::ops::RangeInclusive;
 
 use egui::{DragValue, Response, Ui};
+
+use crate::typed::{self, Shown};
 
 /// Collects what the scene widgets did this frame.
 #[derive(Debug, Default)]
@@ -16,6 +20,47 @@ pub struct EditTracker {
     pub ongoing: bool,
     /// A drag ended this frame.
     pub ended: bool,
+    /// The group of the rows being drawn ("Crack 1"): their names in
+    /// messages.
+    pub group: Option<String>,
+    /// The value typed this frame, if any.
+    pub typed: Option<Typed>,
+}
+
+/// A value typed into a field and written into the draft scene, or
+/// refused already (not a number).
+#[derive(Debug)]
+pub struct Typed {
+    /// The field's name in messages ("Crack 1, friction μ").
+    pub name: String,
+    /// The value the field keeps if the typed one is refused, with its
+    /// unit.
+    pub kept: String,
+    /// Why the field itself refuses the typed value: not a number, or
+    /// outside the field's range.
+    pub refused: Option<String>,
+    /// Whether the value was written into the draft scene (it is a
+    /// number): the solver crate's checks of that scene then speak
+    /// before the field's range.
+    pub in_scene: bool,
+}
+
+impl Typed {
+    /// The value typed into the field `shown`, which keeps `kept`: `read`
+    /// is the number in SI (written into the draft) or why it is not
+    /// one; a number is held to the field's `range` (display units).
+    fn new(shown: Shown, kept: String, read: Result<f64, String>, range: (f64, f64)) -> Self {
+        let (refused, in_scene) = match read {
+            Ok(si) => (typed::outside_range(&shown, si, range, &kept), true),
+            Err(refusal) => (Some(refusal), false),
+        };
+        Self {
+            name: shown.name,
+            kept,
+            refused,
+            in_scene,
+        }
+    }
 }
 
 impl EditTracker {
@@ -23,6 +68,24 @@ impl EditTracker {
         self.ongoing |= r.dragged();
         self.ended |= r.drag_stopped();
     }
+
+    fn shown(&self, label: &str, per_unit: f64, unit: &'static str) -> Shown {
+        Shown {
+            name: typed::full_name(self.group.as_deref(), label),
+            per_unit,
+            unit,
+        }
+    }
+}
+
+/// A number field whose typed text is handed back in `text` instead of
+/// parsed by egui (which clamps it to the range, or drops it without a
+/// word when it does not parse); a drag still moves within the range.
+fn handing_back_text<'a>(drag: DragValue<'a>, text: &'a RefCell<Option<String>>) -> DragValue<'a> {
+    drag.clamp_existing_to_range(false).custom_parser(|t| {
+        text.replace(Some(t.to_owned()));
+        None
+    })
 }
 
 /// One grid row: `label` and a drag value showing `value_si / per_unit` with
@@ -33,32 +96,53 @@ pub fn quantity_row(
     label: &str,
     value_si: &mut f64,
     per_unit: f64,
-    unit: &str,
+    unit: &'static str,
     range: RangeInclusive<f64>,
 ) {
     let l = ui.label(label);
+    let unit = (per_unit, unit);
+    quantity_field(ui, t, l.id, label, value_si, unit, range, true);
+    ui.end_row();
+}
+
+/// The number field of [`quantity_row`] and [`optional_row`], in four
+/// significant digits where `significant` (else as egui writes it).
+#[allow(clippy::too_many_arguments)] // one row's parts, passed on
+fn quantity_field(
+    ui: &mut Ui,
+    t: &mut EditTracker,
+    label_id: egui::Id,
+    label: &str,
+    value_si: &mut f64,
+    (per_unit, unit): (f64, &'static str),
+    range: RangeInclusive<f64>,
+    significant: bool,
+) {
+    let shown = t.shown(label, per_unit, unit);
     let mut v = *value_si / per_unit;
+    let (low, high) = (*range.start(), *range.end());
+    let text = RefCell::new(None);
     let speed = (v.abs() * 0.005).max(1e-3);
-    let suffix = if unit.is_empty() {
-        String::new()
-    } else {
-        format!(" {unit}")
-    };
-    let r = ui
-        .add(
-            DragValue::new(&mut v)
-                .speed(speed)
-                .range(range)
-                .clamp_existing_to_range(false)
-                .suffix(suffix)
-                .custom_formatter(|v, _| crate::units::significant(v)),
-        )
-        .labelled_by(l.id);
+    let mut drag = DragValue::new(&mut v).speed(speed).range(range);
+    if !unit.is_empty() {
+        drag = drag.suffix(format!(" {unit}"));
+    }
+    if significant {
+        drag = drag.custom_formatter(|v, _| crate::units::significant(v));
+    }
+    let r = ui.add(handing_back_text(drag, &text)).labelled_by(label_id);
     if r.changed() {
         *value_si = v * per_unit;
     }
     t.track(&r);
-    ui.end_row();
+    if let Some(text) = text.into_inner() {
+        let kept = shown.value(*value_si);
+        let read = typed::read_number(&text, &shown, *value_si);
+        if let Ok(si) = read {
+            *value_si = si;
+        }
+        t.typed = Some(Typed::new(shown, kept, read, (low, high)));
+    }
 }
 
 /// A grid row for a count.
@@ -70,15 +154,21 @@ pub fn count_row(
     range: RangeInclusive<usize>,
 ) {
     let l = ui.label(label);
-    let r = ui
-        .add(
-            DragValue::new(value)
-                .speed(0.2)
-                .range(range)
-                .clamp_existing_to_range(false),
-        )
-        .labelled_by(l.id);
+    let (low, high) = (*range.start(), *range.end());
+    let text = RefCell::new(None);
+    let drag = DragValue::new(value).speed(0.2).range(range);
+    let r = ui.add(handing_back_text(drag, &text)).labelled_by(l.id);
     t.track(&r);
+    if let Some(text) = text.into_inner() {
+        let shown = t.shown(label, 1.0, "");
+        let kept = value.to_string();
+        let read = typed::read_count(&text, &shown.name, *value);
+        if let Ok(n) = read {
+            *value = n;
+        }
+        let range = (low as f64, high as f64);
+        t.typed = Some(Typed::new(shown, kept, read.map(|n| n as f64), range));
+    }
     ui.end_row();
 }
 
@@ -92,7 +182,7 @@ pub fn optional_row(
     value_si: &mut Option<f64>,
     auto_value_si: f64,
     per_unit: f64,
-    unit: &str,
+    unit: &'static str,
 ) {
     let l = ui.label(label);
     ui.horizontal(|ui| {
@@ -101,21 +191,8 @@ pub fn optional_row(
             *value_si = if auto { None } else { Some(auto_value_si) };
         }
         if let Some(v_si) = value_si {
-            let mut v = *v_si / per_unit;
-            let speed = (v.abs() * 0.005).max(1e-3);
-            let r = ui
-                .add(
-                    DragValue::new(&mut v)
-                        .speed(speed)
-                        .range(0.0..=f64::MAX)
-                        .clamp_existing_to_range(false)
-                        .suffix(format!(" {unit}")),
-                )
-                .labelled_by(l.id);
-            if r.changed() {
-                *v_si = v * per_unit;
-            }
-            t.track(&r);
+            let range = 0.0..=f64::MAX;
+            quantity_field(ui, t, l.id, label, v_si, (per_unit, unit), range, false);
         } else {
             ui.weak(format!(
                 "{} {unit}",

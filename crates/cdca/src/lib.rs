@@ -36,7 +36,7 @@ pub mod solvers;
 pub mod study;
 
 pub use contact::ContactState;
-pub use error::{SceneError, SolveError};
+pub use error::{FieldValue, SceneError, SolveError};
 pub use scene::Scene;
 pub use simulation::{
     ContactPointView, CriterionCurve, INTEGRATION_CHUNK, Initiation, LAMBDA_TOLERANCE, MAX_TRIALS,

@@ -3,7 +3,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::error::SceneError;
 pub use crate::scene::Part;
+use crate::scene::Resume;
 
 /// Output of `cdca solve`: one solve at full load, no growth.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -641,6 +643,111 @@ impl GrowthStepReport {
     }
 }
 
+/// What one growth step did, as a scene saved mid-run keeps it
+/// (`growth.resume.history`): its report's step number, load factor and
+/// events, without its tips, trials and times.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StepEvents {
+    pub step: usize,
+    pub load_factor: f64,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub grown: Vec<GrownTip>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub started: Vec<StartedCrack>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub links: Vec<LinkReport>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub nucleated: Vec<NucleatedCrack>,
+}
+
+impl StepEvents {
+    /// The events of `step`'s report.
+    pub fn of(step: &GrowthStepReport) -> Self {
+        Self {
+            step: step.step,
+            load_factor: step.load_factor,
+            grown: step.grown.clone(),
+            started: step.started.clone(),
+            links: step.links.clone(),
+            nucleated: step.nucleated.clone(),
+        }
+    }
+
+    /// As the scene file holds it. (Plain numbers and lists: writing one
+    /// cannot fail; a non-finite λ would be `null`, which reads back as
+    /// an error naming the entry.)
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::to_value(self).unwrap_or_default()
+    }
+
+    /// A step report holding these events (a step the run went on from:
+    /// it converged); the rest of the report is left at its defaults.
+    pub fn report(&self) -> GrowthStepReport {
+        GrowthStepReport {
+            step: self.step,
+            load_factor: self.load_factor,
+            converged: true,
+            grown: self.grown.clone(),
+            started: self.started.clone(),
+            links: self.links.clone(),
+            nucleated: self.nucleated.clone(),
+            ..GrowthStepReport::default()
+        }
+    }
+
+    /// The steps a saved run did (`resume.history`), as step reports, for
+    /// a scene of `cracks` cracks: each entry must read as [`StepEvents`],
+    /// the steps follow each other up to `resume.steps`, each at a finite
+    /// load factor ≥ 0, naming only the scene's cracks (a link's flaws
+    /// index the cracks' lineage). The first bad entry is the error.
+    pub fn read(resume: &Resume, cracks: usize) -> Result<Vec<GrowthStepReport>, SceneError> {
+        let mut last = 0;
+        let mut steps = Vec::with_capacity(resume.history.len());
+        for (k, entry) in resume.history.iter().enumerate() {
+            let field = |name: &str| format!("growth.resume.history[{k}]{name}");
+            let s: Self = serde_json::from_value(entry.clone()).map_err(|e| {
+                SceneError::invalid(field(""), "an entry", format!("does not read: {e}"))
+            })?;
+            if s.step <= last || s.step > resume.steps {
+                let reason = format!(
+                    "must follow step {last} of the entry before and be at most \
+                     growth.resume.steps ({})",
+                    resume.steps
+                );
+                return Err(SceneError::invalid(field(".step"), s.step, reason));
+            }
+            last = s.step;
+            if !(s.load_factor.is_finite() && s.load_factor >= 0.0) {
+                let reason = "must be a finite number ≥ 0";
+                return Err(SceneError::invalid(
+                    field(".load_factor"),
+                    s.load_factor,
+                    reason,
+                ));
+            }
+            if let Some(c) = s.cracks().find(|&c| c >= cracks) {
+                let reason = format!("names crack {c}: must name one of the {cracks} cracks");
+                return Err(SceneError::invalid(field(".step"), s.step, reason));
+            }
+            steps.push(s.report());
+        }
+        Ok(steps)
+    }
+
+    /// The cracks it names.
+    fn cracks(&self) -> impl Iterator<Item = usize> + '_ {
+        let grown = self.grown.iter().map(|g| g.crack);
+        let started = self.started.iter().flat_map(|s| [s.crack, s.on]);
+        let links = self
+            .links
+            .iter()
+            .flat_map(|l| [l.crack, l.main, l.flaws[0], l.flaws[1]]);
+        let nucleated = self.nucleated.iter().map(|n| n.crack);
+        grown.chain(started).chain(links).chain(nucleated)
+    }
+}
+
 /// A tip that grew in a step: its new position and how it grew.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct GrownTip {
@@ -731,5 +838,101 @@ impl SolveReport {
                 c.iterations, c.residual
             ))
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    /// A scene of two drawn cracks saved after step 3, its history's
+    /// entries `history` (JSON).
+    fn saved(history: &str) -> Resume {
+        let text = format!(
+            r#"{{"specimen":{{"width":0.03,"height":0.03}},"mesh":{{"nx":30,"ny":30}},
+            "material":{{"young":4.78e9,"cohesion":15e6}},
+            "cracks":[{{"points":[[0.01,0.01],[0.013,0.013]]}},{{"points":[[0.02,0.02],[0.023,0.023]]}}],
+            "growth":{{"resume":{{"steps":3,"load_factor":0.5,"history":[{history}]}}}}}}"#
+        );
+        let scene = Scene::from_json(&text).expect("the scene holds any JSON entries");
+        scene.growth.resume.clone().expect("resume")
+    }
+
+    fn field_of(history: &str) -> Option<String> {
+        match StepEvents::read(&saved(history), 2) {
+            Err(SceneError::Invalid { field, .. }) => Some(field),
+            Err(e) => panic!("{e}"),
+            Ok(_) => None,
+        }
+    }
+
+    /// A step's events go into the scene file and back as they were, as
+    /// a converged report holding them.
+    #[test]
+    fn a_steps_events_round_trip() {
+        let report = GrowthStepReport {
+            step: 3,
+            load_factor: 0.6,
+            seconds: 1.5,
+            grown: vec![GrownTip {
+                crack: 0,
+                tip: 1,
+                mode: Mode::Tension,
+                ..GrownTip::default()
+            }],
+            links: vec![LinkReport {
+                crack: 0,
+                tip: 1,
+                main: 1,
+                flaws: [0, 1],
+                coalescence: true,
+                ..LinkReport::default()
+            }],
+            ..GrowthStepReport::default()
+        };
+        let entry = StepEvents::of(&report).to_json().to_string();
+        let read = StepEvents::read(&saved(&entry), 2).expect("reads back");
+        let expected = GrowthStepReport {
+            seconds: 0.0,
+            converged: true,
+            ..report
+        };
+        assert_eq!(read, [expected]);
+    }
+
+    /// Entries out of order or past `steps`, a bad load factor, a crack
+    /// the scene does not have and an entry that does not read are
+    /// refused, naming the entry.
+    #[test]
+    fn a_bad_history_names_its_entry() {
+        let cases = [
+            (
+                r#"{"step":2,"load_factor":0.4},{"step":2,"load_factor":0.5}"#,
+                "growth.resume.history[1].step",
+            ),
+            (
+                r#"{"step":4,"load_factor":0.4}"#,
+                "growth.resume.history[0].step",
+            ),
+            (
+                r#"{"step":1,"load_factor":-1.0}"#,
+                "growth.resume.history[0].load_factor",
+            ),
+            (
+                r#"{"step":1,"load_factor":0.4,"grown":[{"crack":2,"tip":0,"x":0,"y":0,"mode":"tension","angle_deg":0,"k1":0,"k2":0}]}"#,
+                "growth.resume.history[0].step",
+            ),
+            (
+                r#"{"step":1,"load_factor":0.4,"pace":1}"#,
+                "growth.resume.history[0]",
+            ),
+            (r#"{"step":1}"#, "growth.resume.history[0]"),
+        ];
+        for (history, field) in cases {
+            assert_eq!(field_of(history).as_deref(), Some(field), "{history}");
+        }
+        assert_eq!(field_of(r#"{"step":1,"load_factor":0.4}"#), None);
+        assert_eq!(field_of(""), None, "a file without the history");
     }
 }

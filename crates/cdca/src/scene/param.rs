@@ -7,7 +7,7 @@ use serde_json::Value;
 
 use super::file::SceneFile;
 use super::valid::Scene;
-use crate::error::SceneError;
+use crate::error::{FieldValue, SceneError};
 
 impl Scene {
     /// The scene with the number at `path` set to `value`, checked (the
@@ -25,7 +25,7 @@ impl Scene {
         self.has_field(path, true).map_err(|e| match e {
             SceneError::Invalid { field, reason, .. } => SceneError::Invalid {
                 field,
-                value: value.to_string(),
+                value: FieldValue::Text(value.to_string()),
                 reason,
             },
             e => e,
@@ -64,8 +64,8 @@ impl SceneFile {
     pub fn with_values(&self, values: &[(&str, Value)]) -> Result<Self, SceneError> {
         let mut root = serde_json::to_value(self).map_err(|e| SceneError::Write(e.to_string()))?;
         for (path, value) in values {
-            let node =
-                node_at(&mut root, path).map_err(|why| SceneError::invalid(*path, value, why))?;
+            let node = node_at(&mut root, path)
+                .map_err(|why| SceneError::invalid(*path, value.to_string(), why))?;
             *node = value.clone();
         }
         serde_json::from_value(root).map_err(|e| {
@@ -74,9 +74,11 @@ impl SceneFile {
                 .iter()
                 .find(|(p, v)| values.len() == 1 || self.with_values(&[(p, v.clone())]).is_err());
             match culprit {
-                Some((path, value)) => {
-                    SceneError::invalid(*path, value, format!("does not fit the field: {e}"))
-                }
+                Some((path, value)) => SceneError::invalid(
+                    *path,
+                    value.to_string(),
+                    format!("does not fit the field: {e}"),
+                ),
                 None => SceneError::Parse(e.to_string()),
             }
         })

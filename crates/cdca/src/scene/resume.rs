@@ -50,6 +50,18 @@ pub struct Resume {
     /// `growth.intact_rock = "nucleate"` only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rock_starts: Option<RockStarts>,
+    /// The steps done, in order, each with its load factor and what grew,
+    /// started and linked in it: what the run's story, its cracks' kinds,
+    /// its peak and its first link between two flaws are told from, and
+    /// what a later link is checked against (flaws linked before do not
+    /// coalesce again). Each entry is a step's events as the growth report
+    /// writes them ([`StepEvents`](crate::report::StepEvents)), held here
+    /// as JSON because the scene sits below the report; they are read,
+    /// and a bad entry named, when a simulation is built, as `faces` is
+    /// checked then. Left out (a scene saved before issue 66 added it),
+    /// the run reopens knowing only its steps from `steps + 1` on.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub history: Vec<serde_json::Value>,
 }
 
 /// Cracks started in the intact rock at one load (see
@@ -241,14 +253,14 @@ impl Resume {
         if self.increment == 0 {
             return Err(SceneError::invalid(
                 "growth.resume.increment",
-                0,
+                0_usize,
                 "must be at least 1",
             ));
         }
         for (i, f) in self.faces.iter().enumerate() {
             let field = format!("growth.resume.faces[{i}]");
             if let Some(v) = f.iter().find(|v| !v.is_finite()) {
-                return Err(SceneError::invalid(field, v, "must be finite"));
+                return Err(SceneError::invalid(field, *v, "must be finite"));
             }
             if ![0.0, 1.0, 2.0].contains(&f[0]) {
                 return Err(SceneError::invalid(

@@ -7,7 +7,7 @@
 
 mod rigid_body;
 
-use crate::error::SceneError;
+use crate::error::{FieldValue, Num, SceneError};
 use crate::scene::{ArcSpec, CrackSpec, Material, SceneFile, SideBc, SolverKind};
 
 /// Largest accepted mesh, in elements (`nx × ny`).
@@ -77,7 +77,7 @@ impl SceneFile {
             ensure(
                 finite(field, r)? >= 1.0,
                 field,
-                Num(r),
+                r,
                 "must be at least 1 (element sizes)",
             )?;
         }
@@ -137,7 +137,7 @@ impl SceneFile {
              the rock's stiffness would be lost in the round-off of the joint's",
             1.0 / f64::EPSILON
         );
-        ensure(ratio * f64::EPSILON < 1.0, field, Num(k), reason)
+        ensure(ratio * f64::EPSILON < 1.0, field, k, reason)
     }
 
     /// A crack polyline: at least 2 finite points inside the specimen, a
@@ -161,20 +161,15 @@ impl SceneFile {
         }
         let tiny = 1e-12 * self.specimen.width.max(self.specimen.height);
         let length: f64 = points.windows(2).map(|s| distance(s[0], s[1])).sum();
-        ensure(
-            length > tiny,
-            field,
-            Num(length),
-            "the crack has zero length",
-        )?;
+        ensure(length > tiny, field, length, "the crack has zero length")?;
         for k in 1..points.len() {
             let reason = "repeats the previous point (zero-length segment)";
             let long = distance(points[k - 1], points[k]) > tiny;
-            ensure(long, &point_field(k), fmt_point(points[k]), reason)?;
+            ensure(long, &point_field(k), points[k], reason)?;
         }
         let along = points.windows(2).all(|s| self.along_a_side(s[0], s[1]));
         let reason = "lies along the specimen's boundary: it cuts nothing";
-        ensure(!along, field, fmt_point(points[0]), reason)
+        ensure(!along, field, points[0], reason)
     }
 
     /// A drawn crack's ends at least [`MIN_CRACK_SPAN`] element sizes
@@ -217,9 +212,9 @@ impl SceneFile {
         let end = format!("{field}.end_deg");
         let sweep = (finite(&end, arc.end_deg)? - arc.start_deg).abs();
         let reason = "equals start_deg: the arc has zero length";
-        ensure(sweep > 0.0, &end, Num(arc.end_deg), reason)?;
+        ensure(sweep > 0.0, &end, arc.end_deg, reason)?;
         let reason = "the arc sweeps 360° or more (a closed crack cuts a piece free)";
-        ensure(sweep < 360.0, &end, Num(arc.end_deg), reason)?;
+        ensure(sweep < 360.0, &end, arc.end_deg, reason)?;
         let polyline = crack.polyline(self.element_size());
         self.validate_polyline(field, &polyline, |_| field.to_owned())?;
         self.resolved_span(field, &polyline)
@@ -256,12 +251,7 @@ impl SceneFile {
             let reason = "gives no tensile strength 2c cos φ/(1 + sin φ) for the default \
                           criterion radius (K_IC/σ_t)²/2π: give material.cohesion > 0, \
                           material.tensile_strength or criterion.r0";
-            ensure(
-                m.cohesion > 0.0,
-                "material.cohesion",
-                Num(m.cohesion),
-                reason,
-            )?;
+            ensure(m.cohesion > 0.0, "material.cohesion", m.cohesion, reason)?;
         }
         self.process_zone_fits()?;
         let g = &self.growth;
@@ -276,12 +266,7 @@ impl SceneFile {
                 Num(h),
                 Num(MIN_END_SEGMENT * h)
             );
-            ensure(
-                da >= MIN_END_SEGMENT * h,
-                "growth.increment",
-                Num(da),
-                reason,
-            )?;
+            ensure(da >= MIN_END_SEGMENT * h, "growth.increment", da, reason)?;
         }
         at_least_one("growth.load_steps", g.load_steps)?;
         at_least_one("growth.max_steps", g.max_steps)?;
@@ -327,7 +312,7 @@ impl SceneFile {
         };
         if let Some(r0) = self.criterion.r0 {
             let reason = too_large("a criterion radius r0 =", r0);
-            ensure(r0 <= side, "criterion.r0", Num(r0), reason)?;
+            ensure(r0 <= side, "criterion.r0", r0, reason)?;
         }
         let (field, value) = match m.tensile_strength {
             Some(st) => ("material.tensile_strength", st),
@@ -340,7 +325,7 @@ impl SceneFile {
         ensure(
             r_p.is_finite() && r_p <= side,
             field,
-            Num(value),
+            value,
             too_large(&what, r_p),
         )
     }
@@ -356,7 +341,7 @@ impl SceneFile {
              |t|/E = {:.3e} are outside small-strain elasticity",
             t.abs() / e
         );
-        ensure(t.abs() < e, field, Num(t), reason)
+        ensure(t.abs() < e, field, t, reason)
     }
 
     /// `p` is finite and inside the closed specimen rectangle (tolerance
@@ -364,10 +349,16 @@ impl SceneFile {
     fn inside(&self, field: &str, p: [f64; 2]) -> Check {
         finite_point(field, p)?;
         let (w, h) = (self.specimen.width, self.specimen.height);
-        let tol = 1e-9 * w.max(h);
-        let inside = (-tol..=w + tol).contains(&p[0]) && (-tol..=h + tol).contains(&p[1]);
         let reason = format!("outside the specimen [0, {w}] × [0, {h}]");
-        ensure(inside, field, fmt_point(p), reason)
+        ensure(self.contains(p), field, p, reason)
+    }
+
+    /// Whether `p` lies in the closed specimen rectangle, within 1e-9 of
+    /// the specimen size: the test a crack's or a support's point passes.
+    pub fn contains(&self, p: [f64; 2]) -> bool {
+        let (w, h) = (self.specimen.width, self.specimen.height);
+        let tol = 1e-9 * w.max(h);
+        (-tol..=w + tol).contains(&p[0]) && (-tol..=h + tol).contains(&p[1])
     }
 }
 
@@ -375,21 +366,16 @@ fn validate_material(m: &Material) -> Check {
     positive_quantity("material.young", m.young)?;
     let nu = finite("material.poisson", m.poisson)?;
     let reason = "must be below 0.5 (0.5 is incompressible: the stiffness is singular)";
-    ensure(nu < 0.5, "material.poisson", Num(nu), reason)?;
+    ensure(nu < 0.5, "material.poisson", nu, reason)?;
     // ν = −1 itself is excluded too: the shear modulus E/(2(1+ν)) is infinite.
-    ensure(
-        nu > -1.0,
-        "material.poisson",
-        Num(nu),
-        "must be greater than -1",
-    )?;
+    ensure(nu > -1.0, "material.poisson", nu, "must be greater than -1")?;
     non_negative_quantity("material.cohesion", m.cohesion)?;
     let field = "material.friction_angle_deg";
     let phi = finite(field, m.friction_angle_deg)?;
     ensure(
         (0.0..90.0).contains(&phi),
         field,
-        Num(phi),
+        phi,
         "must be in [0, 90) degrees",
     )?;
     positive_quantity("material.k_ic", m.k_ic)?;
@@ -401,7 +387,7 @@ fn validate_material(m: &Material) -> Check {
 }
 
 /// `Ok` when `ok`, otherwise the error naming `field`, `value` and `reason`.
-fn ensure(ok: bool, field: &str, value: impl ToString, reason: impl Into<String>) -> Check {
+fn ensure(ok: bool, field: &str, value: impl Into<FieldValue>, reason: impl Into<String>) -> Check {
     if ok {
         Ok(())
     } else {
@@ -410,16 +396,16 @@ fn ensure(ok: bool, field: &str, value: impl ToString, reason: impl Into<String>
 }
 
 fn finite(field: &str, v: f64) -> Result<f64, SceneError> {
-    ensure(v.is_finite(), field, Num(v), "must be a finite number").map(|()| v)
+    ensure(v.is_finite(), field, v, "must be a finite number").map(|()| v)
 }
 
 fn finite_point(field: &str, p: [f64; 2]) -> Check {
     let ok = p.iter().all(|c| c.is_finite());
-    ensure(ok, field, fmt_point(p), "must be finite numbers")
+    ensure(ok, field, p, "must be finite numbers")
 }
 
 fn positive(field: &str, v: f64) -> Check {
-    ensure(finite(field, v)? > 0.0, field, Num(v), "must be positive")
+    ensure(finite(field, v)? > 0.0, field, v, "must be positive")
 }
 
 /// A physical value (SI units): finite, and zero or within
@@ -433,7 +419,7 @@ fn physical(field: &str, v: f64) -> Check {
         Num(MIN_MAGNITUDE),
         Num(MAX_MAGNITUDE)
     );
-    ensure(ok, field, Num(v), reason)
+    ensure(ok, field, v, reason)
 }
 
 /// A positive [`physical`] value.
@@ -449,17 +435,12 @@ fn non_negative_quantity(field: &str, v: f64) -> Check {
 }
 
 fn non_negative(field: &str, v: f64) -> Check {
-    ensure(
-        finite(field, v)? >= 0.0,
-        field,
-        Num(v),
-        "must not be negative",
-    )
+    ensure(finite(field, v)? >= 0.0, field, v, "must not be negative")
 }
 
 fn open_interval(field: &str, v: f64, low: f64, high: f64) -> Check {
     let ok = finite(field, v)? > low && v < high;
-    ensure(ok, field, Num(v), format!("must be in ({low}, {high})"))
+    ensure(ok, field, v, format!("must be in ({low}, {high})"))
 }
 
 fn at_least_one(field: &str, n: usize) -> Check {
@@ -470,24 +451,9 @@ fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
     (b[0] - a[0]).hypot(b[1] - a[1])
 }
 
-/// A point as the scene errors show it (`[x, y]`, see [`Num`]).
+/// A point as the scene errors show it (`[x, y]`, see [`FieldValue`]).
 pub(crate) fn fmt_point(p: [f64; 2]) -> String {
-    format!("[{}, {}]", Num(p[0]), Num(p[1]))
-}
-
-/// A value as the messages show it: as written for everyday magnitudes,
-/// in exponent form beyond (`1e300`, not three hundred digits).
-struct Num(f64);
-
-impl std::fmt::Display for Num {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let m = self.0.abs();
-        if m == 0.0 || !m.is_finite() || (1e-4..1e15).contains(&m) {
-            write!(f, "{}", self.0)
-        } else {
-            write!(f, "{:e}", self.0)
-        }
-    }
+    FieldValue::Point(p).to_string()
 }
 
 #[cfg(test)]

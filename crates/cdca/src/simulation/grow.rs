@@ -17,7 +17,7 @@ use crate::geometry::cracks::{Crack, TipKind, classify_tips, split_specimen};
 use crate::geometry::plane::{P2, distance_to_segment};
 use crate::report::{
     ContactCounts, GrownTip, GrowthStepReport, KinkReport, LinkReport, Mode, NucleatedCrack,
-    Outcome, SolveReport, StartedCrack, TipReport, WorkReport,
+    Outcome, SolveReport, StartedCrack, StepEvents, TipReport, WorkReport,
 };
 use crate::scene::{CrackSpec, GrowthControl, Lineage, Resume, SolverKind};
 
@@ -317,6 +317,10 @@ impl Simulation {
             grown: Vec::new(),
             lineage: self.state.lineage.clone(),
             rock_starts: self.rock_strength().map(|_| self.state.rock_starts),
+            history: self
+                .run_steps()
+                .map(|s| StepEvents::of(s).to_json())
+                .collect(),
         }
     }
 
@@ -506,7 +510,7 @@ impl Simulation {
         let own = lineage[crack].part_of_segment(if tip == 0 { 0 } else { segments - 1 });
         let hit = nearest_segment(&self.state.cracks[main], p);
         let flaws = [lineage[crack].flaw, lineage[main].flaw];
-        let before = self.state.history.iter().flat_map(|s| &s.links);
+        let before = self.run_steps().flat_map(|s| &s.links);
         let mut groups = Groups::linked(lineage, before.chain(earlier));
         LinkReport {
             crack,
@@ -607,6 +611,19 @@ impl Simulation {
     /// resumes a run, `growth.resume`, starts with none).
     pub fn history(&self) -> &[GrowthStepReport] {
         &self.state.history
+    }
+
+    /// The steps of the run this scene resumes (`growth.resume.history`:
+    /// each step's load factor and events only), before
+    /// [`history`](Self::history).
+    pub fn earlier(&self) -> &[GrowthStepReport] {
+        &self.state.earlier
+    }
+
+    /// Every step of the run: [`earlier`](Self::earlier), then
+    /// [`history`](Self::history).
+    pub(super) fn run_steps(&self) -> impl Iterator<Item = &GrowthStepReport> {
+        self.state.earlier.iter().chain(&self.state.history)
     }
 
     /// Growth steps done, those of the run this scene resumes included

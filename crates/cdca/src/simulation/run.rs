@@ -8,7 +8,8 @@ use super::state::Simulation;
 use crate::error::SolveError;
 use crate::geometry::cracks::root;
 use crate::report::{
-    CoalescenceReport, GrowReport, LinkReport, LoadCapReport, Outcome, StrengthReport,
+    CoalescenceReport, GrowReport, GrowthStepReport, LinkReport, LoadCapReport, Outcome,
+    StrengthReport,
 };
 use crate::scene::Lineage;
 use crate::scene::SideBc;
@@ -67,11 +68,12 @@ impl Simulation {
             .then(|| LoadCapReport::at(self.model.scene.growth.max_load_factor))
     }
 
-    /// The first link between two flaws in this run's history, if any:
-    /// directly, or through cracks started in the intact rock (the flaws
-    /// named are the lowest-numbered drawn flaw on either side).
+    /// The first link between two flaws in the run, if any (the steps of
+    /// a run this scene resumes included): directly, or through cracks
+    /// started in the intact rock (the flaws named are the lowest-numbered
+    /// drawn flaw on either side).
     pub fn coalescence(&self) -> Option<CoalescenceReport> {
-        let history = &self.state.history;
+        let history: Vec<&GrowthStepReport> = self.run_steps().collect();
         history.iter().enumerate().find_map(|(k, s)| {
             let i = s.links.iter().position(|l| l.coalescence)?;
             let l = &s.links[i];
@@ -140,21 +142,17 @@ impl Simulation {
 
     /// The specimen's strength so far: the peak of the recorded load
     /// factors over the steps in which something grew or started (the
-    /// last record of a run stopped at the load cap grew nothing), as in a
-    /// load-controlled test; `None` before any such step.
+    /// last record of a run stopped at the load cap grew nothing; the steps
+    /// of a run this scene resumes included), as in a load-controlled
+    /// test; `None` before any such step.
     pub fn peak(&self) -> Option<StrengthReport> {
         let peak = self
-            .state
-            .history
-            .iter()
+            .run_steps()
             .filter(|s| !(s.grown.is_empty() && s.started.is_empty() && s.nucleated.is_empty()))
-            .fold(
-                None,
-                |best: Option<&crate::report::GrowthStepReport>, s| match best {
-                    Some(b) if b.load_factor >= s.load_factor => Some(b),
-                    _ => Some(s),
-                },
-            )?;
+            .fold(None, |best: Option<&GrowthStepReport>, s| match best {
+                Some(b) if b.load_factor >= s.load_factor => Some(b),
+                _ => Some(s),
+            })?;
         let reference = self.reference_stress();
         Some(StrengthReport {
             peak_step: peak.step,
@@ -227,7 +225,6 @@ impl<'a> Groups<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::GrowthStepReport;
     use crate::scene::Scene;
 
     /// A step that fails ends growth with the steps before it in the

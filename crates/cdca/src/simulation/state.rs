@@ -17,7 +17,7 @@ use crate::fracture::sites::{Readings, SiteGrid};
 use crate::fracture::tips::TipDomains;
 use crate::geometry::cracks::{Crack, TipKind, split_specimen};
 use crate::report::{
-    GrowthStepReport, KinkReport, Outcome, StartLimitReport, TipReport, WorkReport,
+    GrowthStepReport, KinkReport, Outcome, StartLimitReport, StepEvents, TipReport, WorkReport,
 };
 use crate::scene::{Lineage, MIN_END_SEGMENT, RockStarts, Scene, SceneFile, SideBc, fmt_point};
 use crate::solvers::automaton::AutomatonParams;
@@ -46,6 +46,9 @@ pub(super) struct State {
     pub(super) faces: Vec<FaceState>,
     pub(super) solved: bool,
     pub(super) history: Vec<GrowthStepReport>,
+    /// The steps of the run this scene resumes (`growth.resume.history`:
+    /// their events only), before [`history`](Self::history).
+    pub(super) earlier: Vec<GrowthStepReport>,
     pub(super) outcome: Option<Outcome>,
     /// Load increment (1-based) the growth loop is at, and growths there.
     pub(super) increment: usize,
@@ -409,6 +412,10 @@ impl Simulation {
             }
             None => vec![FaceState::default(); nf],
         };
+        let earlier = match &resume {
+            Some(r) => StepEvents::read(r, cracks.len())?,
+            None => Vec::new(),
+        };
         let lineage = match resume.as_ref().and_then(|r| r.lineage_of(cracks.len())) {
             Some(saved) => saved.to_vec(),
             None => (0..cracks.len())
@@ -448,6 +455,7 @@ impl Simulation {
                 faces,
                 solved: false,
                 history: Vec::new(),
+                earlier,
                 outcome: None,
                 increment: resume.as_ref().map_or(1, |r| r.increment),
                 growths_here: resume.as_ref().map_or(0, |r| r.growths_here),

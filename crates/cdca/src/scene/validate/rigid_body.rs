@@ -122,7 +122,7 @@ mod tests {
 
     fn free_motion(boundary: Boundary) -> Option<String> {
         match plate(boundary).validate_rigid_body() {
-            Err(SceneError::Invalid { value, .. }) => Some(value),
+            Err(SceneError::Invalid { value, .. }) => Some(value.to_string()),
             _ => None,
         }
     }

@@ -403,13 +403,7 @@ fn without_a_file_dialog_save_and_open_ask_for_a_path() {
         "{offered} is not in {}",
         dir.display()
     );
-    h.get_by_label("Path").focus();
-    h.run();
-    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
-    h.get_by_label("Path").type_text(&path);
-    h.run();
-    h.get_by_label("Open this file").click();
-    h.run();
+    open_typed_path(&mut h, &path);
     assert_eq!(h.state().scene().cracks[0].friction, 0.25);
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -1232,16 +1226,22 @@ fn open_with_a_banner_up(size: [f32; 2]) {
     h.get_by_label("Open scene…").click();
     h.run();
     h.get_by_label_contains("Type the path of the scene file to open");
-    h.get_by_label("Path").focus();
-    h.run();
-    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
-    h.get_by_label("Path").type_text(&path);
-    h.run();
     // a click lands where the button is drawn (egui_kittest clicks at its
     // centre): at 900 × 600 it lay under the Solver panel
-    h.get_by_label("Open this file").click();
-    h.run();
+    open_typed_path(&mut h, &path);
     assert_eq!(h.state().scene(), &scene, "{size:?}");
     assert_eq!(h.state().typed_path(), None, "{size:?}: the field closes");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Types `path` into the path field (replacing what it offers) and
+/// presses *Open this file*.
+fn open_typed_path(h: &mut Harness<'_, WorkbenchApp>, path: &str) {
+    h.get_by_label("Path").focus();
+    h.run();
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.get_by_label("Path").type_text(path);
+    h.run();
+    h.get_by_label("Open this file").click();
+    h.run();
 }

@@ -8,8 +8,10 @@
 # bundled stepped pair and prints the run's time and the browser's frame
 # times until it ends ("browser frame times during Run growth: ...";
 # CDCA_RUN_GROWTH_MS caps the duration, default 60 s, 0 skips it). Last,
-# the layout at 1280 × 800, 1024 × 640 and 390 × 844, loaded and resized
-# (tests/web/layout.mjs, screenshots web-layout-*.png next to SCREENSHOT).
+# the layout at 1280 × 800, 1024 × 640 and 390 × 844, loaded and resized,
+# and after Run growth (tests/web/layout.mjs, screenshots web-layout-*.png
+# next to SCREENSHOT); and a link copied after a run, which opens the scene
+# as drawn, taken out of the address by Reset (tests/web/link.mjs).
 #
 #   bash scripts/test-web.sh [--no-build | --rustup] [--first-frame [STARTS]] [SCREENSHOT]
 #       SCREENSHOT defaults to target-web/web-screenshot.png; the app's
@@ -96,4 +98,6 @@ step "headless Chromium on http://127.0.0.1:$port/"
 node tests/web/smoke.mjs "http://127.0.0.1:$port/" "$screenshot" "$timings"
 step "layout at three sizes, loaded and resized"
 node tests/web/layout.mjs "http://127.0.0.1:$port/" "$out"
+step "a link after a run shares the scene as drawn"
+node tests/web/link.mjs "http://127.0.0.1:$port/"
 step "done"

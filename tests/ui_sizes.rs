@@ -49,20 +49,48 @@ fn resize(h: &mut Harness<'_, WorkbenchApp>, size: [f32; 2], scale: f32) -> Vec2
     points
 }
 
+/// In a window wide enough for them (not narrow), both side panels shown,
+/// as the window a user widens has them: a narrow window hid them, and
+/// the wider sizes after it were swept without.
+fn show_side_panels(h: &mut Harness<'_, WorkbenchApp>, points: Vec2) {
+    if points.x < cdca_workbench::layout::NARROW_WIDTH {
+        return;
+    }
+    for (heading, button) in [("Scene", "< Scene"), ("Solver", "Solver >")] {
+        if h.query_by_label(heading).is_none() {
+            h.get_by_label(button).click();
+            h.run_steps(2);
+        }
+    }
+}
+
 /// Every window size and text size, each plot tab: a few frames each.
 /// The tabs are chosen by command: a tab's label may be off screen on the
-/// smallest windows.
-fn sweep(h: &mut Harness<'_, WorkbenchApp>, what: &str) {
+/// smallest windows. Returns the text cut at the window's right edge in
+/// windows at least 360 points wide, whatever their height ([`cut_text`]).
+fn sweep(h: &mut Harness<'_, WorkbenchApp>, what: &str) -> Vec<String> {
+    let mut cut = Vec::new();
     for size in SIZES {
         for scale in TEXT_SCALES {
-            resize(h, size, scale);
+            let points = resize(h, size, scale);
+            show_side_panels(h, points);
+            let window = Rect::from_min_size(egui::Pos2::ZERO, points).expand(0.5);
             for tab in PlotTab::TABS {
                 h.state_mut().push(Command::ShowPlot(tab));
                 h.run_steps(2);
+                if points.x >= 360.0 {
+                    let place = format!("{what}, {points:?}, {tab:?}");
+                    cut.extend(
+                        cut_text(h, window)
+                            .into_iter()
+                            .map(|c| format!("{place}: {c}")),
+                    );
+                }
             }
             eprintln!("{what}: {size:?} at {:.0} %", 100.0 * scale);
         }
     }
+    cut
 }
 
 #[test]
@@ -73,22 +101,26 @@ fn sweep(h: &mut Harness<'_, WorkbenchApp>, what: &str) {
 fn no_window_or_text_size_panics_fresh_mid_run_after_a_run_or_in_replay() {
     let mut h = stepped_pair([1400.0, 900.0]);
     assert!(h.state().is_solved());
-    sweep(&mut h, "fresh");
+    let mut cut = sweep(&mut h, "fresh");
 
     h.state_mut().push(Command::RunGrowth);
     h.run_steps(6);
     assert_eq!(h.state().run_mode(), RunMode::Growing);
-    sweep(&mut h, "mid-run");
+    cut.extend(sweep(&mut h, "mid-run"));
 
-    h.ctx.set_zoom_factor(1.0);
-    h.set_size(Vec2::new(1400.0, 900.0));
+    resize(&mut h, [1400.0, 900.0], 1.0);
     run_until_paused(&mut h, 20_000);
     assert!(h.state().growth_history().len() >= 3);
-    sweep(&mut h, "after the run");
+    cut.extend(sweep(&mut h, "after the run"));
 
     h.state_mut().push(Command::Replay(Some(2)));
     h.run_steps(2);
-    sweep(&mut h, "replaying step 2");
+    cut.extend(sweep(&mut h, "replaying step 2"));
+    assert!(
+        cut.is_empty(),
+        "text cut at the window's edge:\n{}",
+        cut.join("\n")
+    );
 }
 
 /// The plot (its accessible name starts `Plot: `) and the story's lines

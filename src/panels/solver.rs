@@ -450,7 +450,11 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         );
     }
     Grid::new("status").num_columns(2).show(ui, |ui| {
-        ui.label("Solved");
+        // values wrap at the panel's edge (at 1400 × 900 with text at 150 %
+        // "median 0.76 × strength" ran past the window); the names keep
+        // their line (`key`)
+        ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Wrap);
+        key(ui, "Solved");
         let capped = view.relax.is_some_and(|r| r.finished && !r.converged);
         ui.label(match (view.solved, view.split) {
             (true, _) if capped => "no (not converged)",
@@ -465,26 +469,26 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
             // the window, and the text below wrapped as wide, off screen
             let count = iterations(view.solver, r.iterations);
             let residual = format!("{:.2e}", r.residual);
-            ui.label("Last solve");
+            key(ui, "Last solve");
             if r.finished && !r.converged {
                 let warn = ui.visuals().warn_fg_color;
                 ui.colored_label(warn, count);
                 ui.end_row();
-                ui.label("Residual");
+                key(ui, "Residual");
                 ui.colored_label(warn, residual);
                 ui.end_row();
-                ui.label("");
+                key(ui, "");
                 ui.colored_label(warn, "NOT converged");
             } else {
                 ui.label(count);
                 ui.end_row();
-                ui.label("Residual");
+                key(ui, "Residual");
                 ui.label(residual);
             }
             ui.end_row();
         }
         if let Some(s) = v.run.last_solve_seconds {
-            ui.label("Last build + solve");
+            key(ui, "Last build + solve");
             ui.label(format!(
                 "{} + {}",
                 units::seconds(v.run.last_build_seconds),
@@ -495,7 +499,7 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         // the steps counted as the plots and reports count them (a
         // reopened run's earlier steps included), on λ's row: a row of
         // their own pushed the tip inspector's plot past the window
-        ui.label("Load factor λ");
+        key(ui, "Load factor λ");
         // no load is applied to an unsolved, edited scene: no 0.000
         let lambda = if view.solved || view.live || !view.history.is_empty() {
             format!("{:.3}", view.load_factor)
@@ -512,7 +516,7 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
             intact_rock_row(ui, &r);
         }
         if let Some(o) = view.outcome {
-            ui.label("Outcome");
+            key(ui, "Outcome");
             let (text, mut meaning) = outcome_text(o, &v.scene.growth);
             if o == Outcome::Completed
                 && let Some((gap, side)) = nearest_edge(&view.tips, v.scene)
@@ -534,7 +538,7 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         }
         if !view.contact.is_empty() {
             let count = |s| view.contact.iter().filter(|c| c.state == s).count();
-            ui.label("Contact points");
+            key(ui, "Contact points");
             let counts = ui.label(format!(
                 "{} open, {} stick, {} slip",
                 count(cdca::ContactState::Open),
@@ -554,12 +558,12 @@ fn status_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
         }
         match (view.second_start, &view.other_solution) {
             (SecondStart::Running, _) => {
-                ui.label("Solutions");
+                key(ui, "Solutions");
                 ui.label("checking from bonded faces…");
                 ui.end_row();
             }
             (SecondStart::Done, Some(sentence)) => {
-                ui.label("Solutions");
+                key(ui, "Solutions");
                 ui.colored_label(ui.visuals().warn_fg_color, "more than one (hover)")
                     .on_hover_text(sentence);
                 ui.end_row();
@@ -667,6 +671,11 @@ fn stepped_around_ui(ui: &mut Ui, history: &[cdca::report::GrowthStepReport]) {
 
 /// The rock away from the cracks against its own strength: its median
 /// utilisation, in the warning colour once it has failed there.
+/// A status row's name, on one line whatever the grid's wrapping.
+fn key(ui: &mut Ui, name: &str) -> egui::Response {
+    ui.add(egui::Label::new(name).extend())
+}
+
 fn intact_rock_row(ui: &mut Ui, r: &cdca::report::IntactRockReport) {
     let why = format!(
         "Median over the elements no crack touches of u = max((σ1 − N_φ σ3)/σ_c, −σ3/σ_t), \
@@ -675,7 +684,7 @@ fn intact_rock_row(ui: &mut Ui, r: &cdca::report::IntactRockReport) {
          criterion does not check it; growth goes on.",
         r.ucs / units::PA_PER_MPA
     );
-    ui.label("Intact rock").on_hover_text(&why);
+    key(ui, "Intact rock").on_hover_text(&why);
     let text = format!("median {:.2} × strength", r.utilisation);
     if r.utilisation >= 1.0 {
         ui.colored_label(ui.visuals().warn_fg_color, text)

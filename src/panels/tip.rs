@@ -98,22 +98,20 @@ fn replayed_tips_ui(ui: &mut Ui, snapshot: &crate::replay::Snapshot) {
         ui.weak("No tips were kept for this step.");
         return;
     }
-    Grid::new("replayed tips")
-        .num_columns(4)
-        .striped(true)
-        .show(ui, |ui| {
-            for head in ["Tip", "K_I", "K_II", "Decision"] {
-                ui.strong(head);
-            }
-            ui.end_row();
-            for t in &view.tips {
-                ui.label(format!("{}, end {}", view.crack_name(t.crack), t.tip + 1));
-                ui.label(k1_words(t));
-                ui.label(units::mpa_sqrt_m(t.k2));
-                ui.label(decision_words(t));
-                ui.end_row();
-            }
-        });
+    // a tip's name, then its values and decision wrapped to the panel: as
+    // a table of four columns they ran past a Solver panel of 260 points
+    for t in &view.tips {
+        ui.strong(format!("{}, end {}", view.crack_name(t.crack), t.tip + 1));
+        ui.add(
+            egui::Label::new(format!(
+                "K_I {}, K_II {}: {}",
+                k1_words(t),
+                units::mpa_sqrt_m(t.k2),
+                decision_words(t)
+            ))
+            .wrap(),
+        );
+    }
 }
 
 /// The criterion's decision; "grows in tension" beside closed faces says
@@ -261,7 +259,15 @@ fn polar_plot_ui(ui: &mut Ui, scene: &SceneFile, tip: &TipReport, c: &CriterionC
         .min(room)
         .max(MIN_POLAR_SIDE);
     let reach = outer * 1e-6 * 1.05;
-    ui.horizontal_top(|ui| {
+    // beside the plot where there is room for the key, else under it (a
+    // Solver panel at its least width cut "shear limit" at the window)
+    let beside = ui.available_width() >= side + KEY_WIDTH + ui.spacing().item_spacing.x;
+    let layout = if beside {
+        egui::Layout::left_to_right(egui::Align::TOP)
+    } else {
+        egui::Layout::top_down(egui::Align::Min)
+    };
+    ui.with_layout(layout, |ui| {
         let shown = Plot::new("polar")
             .data_aspect(1.0)
             .width(side)
@@ -322,15 +328,24 @@ fn polar_plot_ui(ui: &mut Ui, scene: &SceneFile, tip: &TipReport, c: &CriterionC
         shown
             .response
             .widget_info(|| egui::WidgetInfo::labeled(egui::Role::Figure, true, POLAR_PLOT_LABEL));
-        ui.vertical(|ui| {
-            for (name, colour, style, shown) in key {
-                if shown {
+        let shown_key = key.into_iter().filter(|k| k.3);
+        if beside {
+            ui.vertical(|ui| {
+                for (name, colour, style, _) in shown_key {
                     ui.horizontal(|ui| {
                         swatch(ui, colour, Some(style));
                         ui.label(name);
                     });
                 }
-            }
-        });
+            });
+        } else {
+            // each entry moves to the next row whole
+            ui.horizontal_wrapped(|ui| {
+                for (name, colour, style, _) in shown_key {
+                    swatch(ui, colour, Some(style));
+                    ui.add(egui::Label::new(name).extend());
+                }
+            });
+        }
     });
 }

@@ -262,12 +262,7 @@ fn legend_ui(ui: &mut Ui, fig: &Figure, column: bool) {
 /// Whether `text` with a swatch before it is wider than a whole row of
 /// the legend.
 fn wider_than_a_row(ui: &Ui, text: &str) -> bool {
-    let font = egui::TextStyle::Body.resolve(ui.style());
-    let width = ui
-        .painter()
-        .layout_no_wrap(text.to_owned(), font, egui::Color32::PLACEHOLDER)
-        .size()
-        .x;
+    let width = super::widgets::text_width(ui, text, &egui::TextStyle::Body);
     width + 2.0 * ui.spacing().interact_size.y > ui.max_rect().width()
 }
 

@@ -98,15 +98,13 @@ pub fn replay_ui(
 
 /// Whether the marks' buttons (small text) fit in one row of `ui`.
 fn in_one_row(ui: &Ui, marks: &[(usize, String)]) -> bool {
-    let font = egui::TextStyle::Small.resolve(ui.style());
     let spacing = ui.spacing();
     let width: f32 = marks
         .iter()
         .map(|(_, text)| {
-            let galley =
-                ui.painter()
-                    .layout_no_wrap(text.clone(), font.clone(), egui::Color32::PLACEHOLDER);
-            galley.size().x + 2.0 * spacing.button_padding.x + spacing.item_spacing.x
+            super::widgets::text_width(ui, text, &egui::TextStyle::Small)
+                + 2.0 * spacing.button_padding.x
+                + spacing.item_spacing.x
         })
         .sum();
     width <= ui.available_width()

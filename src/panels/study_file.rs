@@ -263,28 +263,22 @@ fn rows_table(ui: &mut Ui, run: &FileStudy) {
                 .body(|body| {
                     body.rows(row_height, run.rows.len(), |mut cells| {
                         let row = &run.rows[cells.index()];
-                        // the outcome's cell says on hover why a point failed
-                        let error = row.error.as_deref().unwrap_or("");
-                        let mut cell = |text: String| {
+                        let mut cell = |text: String, hover: Option<&str>| {
                             cells.col(|ui| {
-                                let label = ui.label(&text);
-                                if text == row.outcome && !error.is_empty() {
-                                    label.on_hover_text(error);
+                                let label = ui.label(text);
+                                if let Some(why) = hover {
+                                    label.on_hover_text(why);
                                 }
                             });
                         };
-                        cell(row.point.to_string());
+                        cell(row.point.to_string(), None);
                         for (input, (_, factor)) in row.inputs.iter().zip(&titles) {
-                            cell(input_text(input, *factor));
+                            cell(input_text(input, *factor), None);
                         }
-                        let texts: [String; 8] = match &row.run {
-                            None => std::array::from_fn(|k| {
-                                if k == 0 {
-                                    row.outcome.clone()
-                                } else {
-                                    "–".to_owned()
-                                }
-                            }),
+                        // the outcome says on hover why a point failed
+                        cell(row.outcome.clone(), row.error.as_deref());
+                        let rest: [String; 7] = match &row.run {
+                            None => std::array::from_fn(|_| "–".to_owned()),
                             Some(r) => {
                                 let (joins, step) = r
                                     .link
@@ -293,7 +287,6 @@ fn rows_table(ui: &mut Ui, run: &FileStudy) {
                                         (l.category.clone(), l.step.to_string())
                                     });
                                 [
-                                    row.outcome.clone(),
                                     r.steps.to_string(),
                                     r.strength.as_ref().map_or("–".to_owned(), |s| {
                                         format!("{:.3}", s.peak_load_factor)
@@ -306,8 +299,8 @@ fn rows_table(ui: &mut Ui, run: &FileStudy) {
                                 ]
                             }
                         };
-                        for text in texts {
-                            cell(text);
+                        for text in rest {
+                            cell(text, None);
                         }
                     });
                 });

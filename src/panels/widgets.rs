@@ -272,3 +272,12 @@ pub fn name_list(response: &egui::Response, name: &str, value: &str) {
         info
     });
 }
+
+/// The width of `text` on one line in the text style `style`, points.
+pub fn text_width(ui: &Ui, text: &str, style: &egui::TextStyle) -> f32 {
+    let font = style.resolve(ui.style());
+    ui.painter()
+        .layout_no_wrap(text.to_owned(), font, egui::Color32::PLACEHOLDER)
+        .size()
+        .x
+}

@@ -484,6 +484,22 @@ impl WorkbenchApp {
             .current()
             .map(|f| (f.key.version, f.samples.len()))
     }
+    /// How large the stresses of the field the canvas shows are against
+    /// the scene's largest boundary traction (see [`FieldScale`]), if a
+    /// field shows.
+    ///
+    /// [`FieldScale`]: crate::field::FieldScale
+    pub fn shown_field_scale(&self) -> Option<crate::field::FieldScale> {
+        let b = &self.scene.boundary;
+        let traction = [b.bottom, b.left, b.top, b.right]
+            .iter()
+            .map(|side| match side {
+                cdca::scene::SideBc::Traction { normal, shear } => normal.hypot(*shear),
+                _ => 0.0,
+            })
+            .fold(0.0, f64::max);
+        self.runner.field().current().map(|f| f.scale(traction))
+    }
     /// The load factor of the state the canvas's field was sampled from.
     pub fn shown_field_load_factor(&self) -> Option<f64> {
         self.runner.field().current().map(|f| f.load_factor)

@@ -156,7 +156,50 @@ pub struct FieldSamples {
     pub samples: Vec<Sample>,
 }
 
+/// How large a sampled field's stresses are against the load it was
+/// sampled at: the sign of a field that is not one (issue 63), a field of
+/// zeros (a solve's start) or a working vector's GPa spikes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FieldScale {
+    /// Largest finite |σ| component, Pa.
+    pub peak: f64,
+    /// 99th percentile of the finite |σ| components, Pa.
+    pub p99: f64,
+    /// Largest boundary traction at the field's load factor, Pa.
+    pub load: f64,
+}
+
+impl FieldScale {
+    /// A field, not a vanished or garbled one: its peak is at least 1e-6
+    /// of the load, and its 99th percentile at most 10 times the load (the
+    /// bundled scenes' solved fields stay under 2 times it; a direct
+    /// solve's working vector between Newton steps gave 75 times it).
+    /// Without a load (displacements only) any field is one.
+    pub fn is_a_field(&self) -> bool {
+        self.load == 0.0 || (self.peak >= 1e-6 * self.load && self.p99 <= 10.0 * self.load)
+    }
+}
+
 impl FieldSamples {
+    /// How large its stresses are against `traction` (the largest
+    /// boundary traction at λ = 1, Pa) at its load factor.
+    pub fn scale(&self, traction: f64) -> FieldScale {
+        let mut v: Vec<f64> = self
+            .samples
+            .iter()
+            .flat_map(|s| s.stress)
+            .filter(|v| v.is_finite())
+            .map(f64::abs)
+            .collect();
+        v.sort_by(f64::total_cmp);
+        let n = v.len();
+        FieldScale {
+            peak: v.last().copied().unwrap_or(0.0),
+            p99: if n == 0 { 0.0 } else { v[(n - 1) * 99 / 100] },
+            load: traction * self.load_factor.abs(),
+        }
+    }
+
     /// Sub-cell size, m.
     pub fn cell(&self) -> [f64; 2] {
         [

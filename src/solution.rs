@@ -22,8 +22,9 @@ pub struct SolutionView {
     pub version: u64,
     /// The displacement is a solution of the current cracks and load.
     pub solved: bool,
-    /// A solve is under way: the displacement is its current iterate (the
-    /// canvas shows it live).
+    /// A solve is under way and its iterate is a field
+    /// ([`Simulation::has_live_iterate`]: an iterative solver's, after its
+    /// first iteration): the canvas shows it live.
     pub live: bool,
     /// Crack polylines as simulated (grown segments included), m.
     pub cracks: Vec<Vec<[f64; 2]>>,
@@ -117,7 +118,7 @@ impl SolutionView {
         self.solved = solved;
         self.split = false;
         self.free_piece = None;
-        self.live = !solved && sim.is_relaxing();
+        self.live = !solved && sim.has_live_iterate();
         self.relax = relax;
         self.failure = relax
             .filter(|r| r.finished && !r.converged)

@@ -101,6 +101,24 @@ impl WebApp {
             f.samples.iter().filter(|s| s.stress[0].is_finite()).count()
         });
         set("fieldFinite", (finite as f64).into());
+        // The shown field's stresses against the load (issue 63): `ok`
+        // false for a field of zeros or a working vector's spikes
+        // (`FieldScale::is_a_field`); null without a field.
+        set(
+            "fieldScale",
+            app.shown_field_scale().map_or(JsValue::NULL, |f| {
+                let o = js_sys::Object::new();
+                for (key, value) in [
+                    ("peak", JsValue::from(f.peak)),
+                    ("p99", JsValue::from(f.p99)),
+                    ("load", JsValue::from(f.load)),
+                    ("ok", JsValue::from(f.is_a_field())),
+                ] {
+                    let _ = js_sys::Reflect::set(&o, &JsValue::from_str(key), &value);
+                }
+                o.into()
+            }),
+        );
         set("growthSteps", (app.growth_steps() as f64).into());
         set("residualSamples", (app.residual_samples() as f64).into());
         set("runMode", format!("{:?}", app.run_mode()).into());

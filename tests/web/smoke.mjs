@@ -280,7 +280,7 @@ async function runGrowthFrameTimes() {
     // the run has not started 30 s after the loop did.
     await page.evaluate(
         ({ durationMs }) => {
-            const rec = { frames: [], start: -1, done: false, why: "" };
+            const rec = { frames: [], start: -1, done: false, why: "", notFields: 0, notField: null };
             window.cdcaFrameTimes = rec;
             const t0 = performance.now();
             let last = t0;
@@ -289,6 +289,11 @@ async function runGrowthFrameTimes() {
                 const now = performance.now();
                 const s = window.cdcaState || {};
                 rec.frames.push([now - last, s.growthSteps ?? 0, s.runMode ?? ""]);
+                // issue 63: no frame shows a vanished or garbled field
+                if (s.fieldScale && !s.fieldScale.ok) {
+                    rec.notFields += 1;
+                    rec.notField ??= { frame: rec.frames.length - 1, ...s.fieldScale };
+                }
                 last = now;
                 if (rec.start < 0 && s.runMode && s.runMode !== "Paused") {
                     rec.start = rec.frames.length - 1;
@@ -376,6 +381,13 @@ async function runGrowthFrameTimes() {
             `(under ${FRAME_TARGET_MS} ms: ${max < FRAME_TARGET_MS ? "met" : "NOT met"})`,
     ];
     if (steps <= 0) throw new Error(`no growth step in ${(t / 1000).toFixed(1)} s: ${summary}`);
+    if (rec.notFields > 0) {
+        throw new Error(
+            `${rec.notFields} frames showed a field that is none (peak below 1e-6 or 99th ` +
+                `percentile above 10 times the load); the first: ${JSON.stringify(rec.notField)}`,
+        );
+    }
+    details.push(`  every frame's field is a field (peak ≥ 1e-6, p99 ≤ 10 times the load): ${n + 1} frames`);
     return [summary, ...details];
 }
 

@@ -104,6 +104,24 @@ impl Simulation {
         self.scratch.job.is_some()
     }
 
+    /// Whether the displacement is an iterate worth showing as a field: a
+    /// solve under way whose linear solver iterates (the automaton, CG)
+    /// has made at least one iteration. Otherwise, while a solve is under
+    /// way, it is no field: before the first iteration it is the start
+    /// (zero after a rebuild: a field of exact zeros), and a solver that
+    /// keeps a factor (the direct one) takes Newton steps whose working
+    /// vector is exact on the faces' DOFs and on the rows their solves
+    /// reach, and keeps the iterate before elsewhere (zero after a
+    /// rebuild: stresses of GPa along the nested dissection's separators).
+    pub fn has_live_iterate(&self) -> bool {
+        !self.scratch.solver.keeps_factor()
+            && self
+                .scratch
+                .job
+                .as_ref()
+                .is_some_and(|j| j.reached().history.iter().any(|s| s.iteration > 0))
+    }
+
     /// While a new discretisation (after a growth step, or a new
     /// simulation's) is being prepared across calls (see
     /// [`advance_growth`](Self::advance_growth), [`relax`](Self::relax)):

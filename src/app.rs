@@ -485,10 +485,8 @@ impl WorkbenchApp {
             .map(|f| (f.key.version, f.samples.len()))
     }
     /// How large the stresses of the field the canvas shows are against
-    /// the scene's largest boundary traction (see [`FieldScale`]), if a
-    /// field shows.
-    ///
-    /// [`FieldScale`]: crate::field::FieldScale
+    /// the scene's largest boundary traction (`FieldScale`), if a field
+    /// shows.
     pub fn shown_field_scale(&self) -> Option<crate::field::FieldScale> {
         let b = &self.scene.boundary;
         let traction = [b.bottom, b.left, b.top, b.right]

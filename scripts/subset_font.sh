@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Writes assets/fonts/Ubuntu-Light-derivative-CDCA.ttf, the app's text font (src/app.rs,
+# Writes assets/fonts/Ubuntu-Light-derivative-CDCA.ttf, the app's text font (src/app/mod.rs,
 # `fonts`): egui's Ubuntu Light (from the epaint_default_fonts crate in the
 # cargo registry) cut to the scripts a scene name or a message may use:
 # Latin-1 and Latin Extended-A, Greek, basic Cyrillic, general punctuation,

@@ -1,51 +1,35 @@
 //! The CDCA workbench: an egui application on top of the headless `cdca`
 //! solver crate. `main.rs` is a thin native (and web) wrapper around
 //! [`WorkbenchApp`].
+//!
+//! Its parts, bottom to top; each uses only the parts below it
+//! (`tests/layout.rs` checks it):
+//!
+//! - `style`: how numbers and colours read;
+//! - `files`: scenes and files opened, saved and shared;
+//! - `results`: what a run leaves (solution view, field, replay, story,
+//!   exports);
+//! - `run`: how work runs (the runner, its runs, the growth thread);
+//! - `plots`: the figures of a solve and a run;
+//! - `study`: studies and the solver race, and their plots;
+//! - `state`: what the user asks for (commands, the app's view, edits,
+//!   the job slot, undo, layout and settings);
+//! - `canvas`: the specimen drawn;
+//! - `panels`: the panels, menus and bars;
+//! - `app`: the frame loop, commands applied, the browser's wrapper.
 
 pub mod app;
-mod apply;
 mod canvas;
-pub mod command;
-pub mod compare;
-mod contrast;
-mod edit;
-mod export;
-mod field;
-mod figure;
-mod figures;
-mod frame_stats;
-mod grower;
-mod io;
-pub mod job;
-pub mod layout;
-pub mod link;
-mod pacer;
+pub mod files;
 mod panels;
-mod path_prompt;
-mod persist;
-mod plot_tab;
-mod replay;
-mod restore;
+mod plots;
+pub mod results;
 mod run;
-mod run_timer;
-mod runner;
-pub mod scenes;
-mod solution;
-pub mod story;
+pub mod state;
 pub mod study;
-pub mod study_file;
-mod study_map;
-mod task;
-mod typed;
-mod undo;
-mod units;
-mod view;
-#[cfg(target_arch = "wasm32")]
-pub mod web;
-#[cfg(target_arch = "wasm32")]
-mod web_work;
+mod style;
 
 pub use app::{Options, StartRun, WorkbenchApp};
-pub use command::Command;
-pub use plot_tab::PlotTab;
+pub use plots::plot_tab::PlotTab;
 pub use run::RunMode;
+pub use state::command::Command;

@@ -72,7 +72,7 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Option<Launch>, 
             }
             "--link" => {
                 let link = args.next().ok_or("--link needs a link (…#scene=…)")?;
-                let scene = match cdca_workbench::link::from_link(&link) {
+                let scene = match cdca_workbench::files::link::from_link(&link) {
                     Some(Ok(scene)) => scene,
                     Some(Err(e)) => return Err(format!("--link: {e}")),
                     None => return Err("--link: the link carries no scene (#scene=…)".to_owned()),
@@ -222,7 +222,7 @@ fn main() {
                     dithering: false,
                     ..eframe::WebOptions::default()
                 },
-                Box::new(|cc| Ok(Box::new(cdca_workbench::web::WebApp::new(cc)))),
+                Box::new(|cc| Ok(Box::new(cdca_workbench::app::web::WebApp::new(cc)))),
             )
             .await;
         match started {

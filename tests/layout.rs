@@ -1,6 +1,9 @@
 //! The workbench's files import one way: no file of `src/` imports, through
-//! any chain of imports, from a file that imports it. (The solver crate has
-//! its own, stricter check: `crates/cdca/tests/layout.rs`.)
+//! any chain of imports, from a file that imports it; and its parts (the
+//! folders `lib.rs` lists, bottom to top) import only from the parts below
+//! them, stand at most 8 floors tall, and leave at most 12 files directly
+//! in `src/` (issue 67). (The solver crate has its own check:
+//! `crates/cdca/tests/layout.rs`.)
 //!
 //! A file's imports are the `crate::…` and `super::…` paths in its code
 //! (`use` lines, brace groups of one level and inline paths), and paths
@@ -16,6 +19,11 @@ use std::path::{Path, PathBuf};
 #[path = "../crates/cdca/tests/support/rust_files.rs"]
 mod support;
 use support::rust_files;
+
+/// The workbench's parts, bottom to top, as `lib.rs` lists them.
+const PARTS: [&str; 10] = [
+    "style", "files", "results", "run", "plots", "study", "state", "canvas", "panels", "app",
+];
 
 fn src_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
@@ -194,7 +202,7 @@ fn no_file_imports_from_a_file_that_imports_it() {
     let edges: usize = graph.values().map(BTreeSet::len).sum();
     // the check sees the imports: every panel file imports the view
     assert!(edges > 100, "only {edges} imports found");
-    let view = src_dir().join("view.rs");
+    let view = src_dir().join("state").join("view.rs");
     let plots = src_dir().join("panels").join("plots.rs");
     assert!(graph[&plots].contains(&view), "{:?}", graph[&plots]);
     let src = src_dir();
@@ -209,4 +217,94 @@ fn no_file_imports_from_a_file_that_imports_it() {
         })
         .collect();
     assert!(cycles.is_empty(), "import cycles:\n{}", cycles.join("\n"));
+}
+
+/// The part a file of `src/` is in (its folder), `None` for `lib.rs` and
+/// `main.rs`.
+fn part_of(file: &Path) -> Option<String> {
+    let rel = file.strip_prefix(src_dir()).expect("under src");
+    (rel.components().count() > 1).then(|| {
+        rel.iter()
+            .next()
+            .expect("a folder")
+            .to_string_lossy()
+            .into_owned()
+    })
+}
+
+/// Every file but `lib.rs` and `main.rs` is in one of the parts, and each
+/// part imports only from the parts below it in [`PARTS`].
+#[test]
+fn parts_import_only_from_the_parts_below_them() {
+    let graph = import_graph();
+    let rank = |part: &str| PARTS.iter().position(|p| *p == part);
+    let src = src_dir();
+    let name = |f: &Path| f.strip_prefix(&src).unwrap_or(f).display().to_string();
+    let mut loose = Vec::new();
+    let mut upward = Vec::new();
+    for (from, targets) in &graph {
+        let Some(part) = part_of(from) else {
+            let top = name(from);
+            if top != "lib.rs" && top != "main.rs" {
+                loose.push(top);
+            }
+            continue;
+        };
+        let Some(rf) = rank(&part) else {
+            loose.push(name(from));
+            continue;
+        };
+        for t in targets {
+            let rt = part_of(t).and_then(|p| rank(&p));
+            if rt.is_none_or(|rt| rt > rf) {
+                upward.push(format!("{} → {}", name(from), name(t)));
+            }
+        }
+    }
+    assert!(loose.is_empty(), "files in no part of lib.rs: {loose:?}");
+    assert!(upward.is_empty(), "imports going up the parts: {upward:#?}");
+}
+
+/// Counting each part as one room, the parts stand at most 8 floors tall
+/// (a part on each floor imports from a part on the floor below), and at
+/// most 12 files stay directly in `src/`.
+#[test]
+fn the_parts_stand_at_most_8_floors_tall() {
+    let graph = import_graph();
+    let mut below: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for (from, targets) in &graph {
+        let Some(part) = part_of(from) else { continue };
+        let entry = below.entry(part.clone()).or_default();
+        entry.extend(
+            targets
+                .iter()
+                .filter_map(|t| part_of(t))
+                .filter(|p| *p != part),
+        );
+    }
+    // the parts are in the order of PARTS (the test above): one pass up
+    let mut floor: BTreeMap<String, usize> = BTreeMap::new();
+    for part in PARTS {
+        let f = 1 + below
+            .get(part)
+            .into_iter()
+            .flatten()
+            .map(|p| floor.get(p).copied().unwrap_or(0))
+            .max()
+            .unwrap_or(0);
+        floor.insert(part.to_owned(), f);
+    }
+    let tallest = floor.values().max().copied().unwrap_or(0);
+    assert!(
+        tallest <= 8,
+        "the parts stand {tallest} floors tall: {floor:?}"
+    );
+    let loose = fs::read_dir(src_dir())
+        .expect("src")
+        .filter(|e| {
+            e.as_ref()
+                .is_ok_and(|e| e.path().extension().is_some_and(|x| x == "rs"))
+        })
+        .count();
+    assert!(loose <= 12, "{loose} files directly in src/");
 }

@@ -983,7 +983,7 @@ fn compare_from_a_cold_start_gives_falling_error_curves() {
         h.step();
         if h.state()
             .race()
-            .is_some_and(cdca_workbench::compare::Race::finished)
+            .is_some_and(cdca_workbench::study::race::Race::finished)
         {
             break;
         }
@@ -1574,7 +1574,10 @@ fn a_link_after_a_run_shares_the_scene_as_drawn() {
     h.get_by_label("Copy link to this scene").click();
     h.run();
     let link = h.state().scene_link().expect("a link");
-    assert_eq!(cdca_workbench::link::from_link(&link), Some(Ok(drawn)));
+    assert_eq!(
+        cdca_workbench::files::link::from_link(&link),
+        Some(Ok(drawn))
+    );
     assert!(h.state().address_holds_link());
     match h.state().message() {
         Some(Message::Info(m)) => assert!(
@@ -1669,7 +1672,7 @@ fn a_shared_link_opens_its_scene_and_a_bad_one_falls_back_with_a_message() {
     let mut shared = h.state().scene().clone();
     shared.name = "Flaw at 50°, μ = 0.45".to_owned();
     shared.cracks[0].friction = 0.45;
-    let fragment = cdca_workbench::link::to_fragment(&shared.to_json().expect("json"));
+    let fragment = cdca_workbench::files::link::to_fragment(&shared.to_json().expect("json"));
     h.state_mut().push(Command::OpenLink(format!(
         "https://example.org/cdca/#{fragment}"
     )));
@@ -1683,7 +1686,10 @@ fn a_shared_link_opens_its_scene_and_a_bad_one_falls_back_with_a_message() {
     h.state_mut()
         .push(Command::OpenLink(format!("#{truncated}")));
     h.run_steps(3);
-    assert_eq!(h.state().scene(), &cdca_workbench::scenes::default_scene());
+    assert_eq!(
+        h.state().scene(),
+        &cdca_workbench::files::scenes::default_scene()
+    );
     let e = error_message(&h);
     assert!(
         e.starts_with("The shared link could not be opened: the link is truncated or damaged")
@@ -1936,7 +1942,7 @@ fn the_study_tab_offers_only_the_scenes_own_parameters() {
     ignore = "the solver is slow without optimisation: run with --release"
 )]
 fn the_workbench_and_the_cli_write_byte_identical_csv() {
-    use cdca_workbench::command::Export;
+    use cdca_workbench::state::command::Export;
     // the `cdca` binary beside this test's directory (target/release)
     let exe = std::env::current_exe().expect("the test binary");
     let cli = exe

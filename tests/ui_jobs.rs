@@ -7,7 +7,7 @@
 mod field;
 
 use cdca_workbench::app::Message;
-use cdca_workbench::job::Job;
+use cdca_workbench::state::job::Job;
 use cdca_workbench::{Command, Options, RunMode, WorkbenchApp};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -92,7 +92,7 @@ fn solve_gives_the_command_lines_answer_whatever_ran_before() {
     assert!(
         h.state()
             .race()
-            .is_some_and(cdca_workbench::compare::Race::finished)
+            .is_some_and(cdca_workbench::study::race::Race::finished)
     );
     solve(&mut h);
     assert_cli_answer(&h, &json, "after the race");
@@ -220,7 +220,7 @@ fn one_job_runs_at_a_time_and_another_offers_to_cancel_it() {
     for _ in 0..20_000 {
         if h.state()
             .race()
-            .is_some_and(cdca_workbench::compare::Race::finished)
+            .is_some_and(cdca_workbench::study::race::Race::finished)
         {
             break;
         }
@@ -313,11 +313,11 @@ fn every_bundled_scene_is_in_the_menu() {
     h.run();
     h.get_by_label("Bundled scenes").click();
     h.run();
-    for b in cdca_workbench::scenes::BUNDLED {
+    for b in cdca_workbench::files::scenes::BUNDLED {
         h.get_by_label(b.title);
     }
     assert_eq!(
-        cdca_workbench::scenes::BUNDLED.len(),
+        cdca_workbench::files::scenes::BUNDLED.len(),
         15,
         "assets/scenes/*.json"
     );
@@ -432,8 +432,9 @@ fn a_save_during_a_run_writes_the_steps_on_screen_at_the_press() {
         h.step();
         frames += 1;
     }
-    h.state_mut()
-        .push(Command::Export(cdca_workbench::command::Export::Scene));
+    h.state_mut().push(Command::Export(
+        cdca_workbench::state::command::Export::Scene,
+    ));
     h.step();
     let opened = h.state().growth_steps();
     assert!(h.state().typed_path().is_some(), "the path field is open");
@@ -590,7 +591,7 @@ fn last_x(csv: &str) -> f64 {
 )]
 fn a_reopened_run_counts_its_steps_as_its_plots_place_them() {
     use cdca_workbench::PlotTab;
-    use cdca_workbench::command::{Export, PlotFormat};
+    use cdca_workbench::state::command::{Export, PlotFormat};
     let mut h = solved_default();
     // one step: the default flaw's wings (its third step starts cracks in
     // the intact rock, with no tip to plot on the Angles plot)
@@ -812,7 +813,7 @@ fn each_bundled_pair_ends_in_a_story() {
         "specimen_two_flaws_stepped.json",
         "specimen_two_flaws_overlapping.json",
     ] {
-        let i = cdca_workbench::scenes::BUNDLED
+        let i = cdca_workbench::files::scenes::BUNDLED
             .iter()
             .position(|b| b.json.contains(file) || b.file == file)
             .expect("bundled");
@@ -934,7 +935,7 @@ fn each_bundled_pair_ends_in_a_story() {
 )]
 fn a_solve_queued_behind_a_run_keeps_the_runs_steps() {
     use cdca_workbench::PlotTab;
-    use cdca_workbench::command::{Export, PlotFormat};
+    use cdca_workbench::state::command::{Export, PlotFormat};
     let mut h = solved_default();
     h.get_by_label("Run growth").click();
     h.run_steps(2);
@@ -1060,7 +1061,7 @@ fn undo_brings_back_what_reset_open_and_a_new_study_replaced() {
     h.run_steps(3);
     the_run_is_back(h.state(), "Reset");
 
-    let pair = cdca_workbench::scenes::BUNDLED
+    let pair = cdca_workbench::files::scenes::BUNDLED
         .iter()
         .position(|b| b.file == "specimen_two_flaws_stepped.json")
         .expect("bundled");
@@ -1112,7 +1113,7 @@ fn click_mark(h: &mut Harness<'_, WorkbenchApp>, label: &str) {
 )]
 fn the_replay_shows_each_marked_step_as_the_run_had_it() {
     let file = "specimen_two_flaws_stepped.json";
-    let bundled = cdca_workbench::scenes::BUNDLED
+    let bundled = cdca_workbench::files::scenes::BUNDLED
         .iter()
         .position(|b| b.file == file)
         .expect("bundled");
@@ -1135,8 +1136,8 @@ fn the_replay_shows_each_marked_step_as_the_run_had_it() {
     assert!(marks.len() >= 2, "{marks:?}");
     assert!(marks.iter().any(|(_, t)| t == "link"), "{marks:?}");
 
-    let scene =
-        cdca::Scene::from_json(cdca_workbench::scenes::BUNDLED[bundled].json).expect("valid scene");
+    let scene = cdca::Scene::from_json(cdca_workbench::files::scenes::BUNDLED[bundled].json)
+        .expect("valid scene");
     let mut sim = cdca::Simulation::new(scene).expect("valid scene");
     let mut after = vec![sim.cracks()];
     while sim.growth_finished().is_none() {

@@ -134,7 +134,7 @@ fn a_phone_shows_the_canvas_and_the_run_bar() {
     h.run_steps(3);
     assert_eq!(
         h.state().running_job(),
-        Some(cdca_workbench::job::Job::Growth)
+        Some(cdca_workbench::state::job::Job::Growth)
     );
     h.get_by_label("Pause").click();
     h.run_steps(3);

@@ -26,7 +26,7 @@ fn grown(file: Option<&str>) -> Harness<'static, WorkbenchApp> {
     h.run_steps(3);
     run_until_paused(&mut h, 2000);
     if let Some(file) = file {
-        let i = cdca_workbench::scenes::BUNDLED
+        let i = cdca_workbench::files::scenes::BUNDLED
             .iter()
             .position(|b| b.json.contains(file) || b.file == file)
             .expect("bundled");
@@ -48,7 +48,7 @@ fn race(h: &mut Harness<'_, WorkbenchApp>) {
         h.step();
         if h.state()
             .race()
-            .is_some_and(cdca_workbench::compare::Race::finished)
+            .is_some_and(cdca_workbench::study::race::Race::finished)
         {
             break;
         }
@@ -56,7 +56,7 @@ fn race(h: &mut Harness<'_, WorkbenchApp>) {
     assert!(
         h.state()
             .race()
-            .is_some_and(cdca_workbench::compare::Race::finished)
+            .is_some_and(cdca_workbench::study::race::Race::finished)
     );
     h.run_steps(3);
 }

@@ -5,8 +5,8 @@
 //! selected plot stay whole in the window, the plot at least 180 points
 //! tall.
 
-use cdca_workbench::command::Command;
-use cdca_workbench::layout::TEXT_SCALES;
+use cdca_workbench::state::command::Command;
+use cdca_workbench::state::layout::TEXT_SCALES;
 use cdca_workbench::{Options, PlotTab, RunMode, WorkbenchApp};
 use egui::{Rect, Vec2};
 use egui_kittest::Harness;
@@ -53,7 +53,7 @@ fn resize(h: &mut Harness<'_, WorkbenchApp>, size: [f32; 2], scale: f32) -> Vec2
 /// as the window a user widens has them: a narrow window hid them, and
 /// the wider sizes after it were swept without.
 fn show_side_panels(h: &mut Harness<'_, WorkbenchApp>, points: Vec2) {
-    if points.x < cdca_workbench::layout::NARROW_WIDTH {
+    if points.x < cdca_workbench::state::layout::NARROW_WIDTH {
         return;
     }
     for (heading, button) in [("Scene", "< Scene"), ("Solver", "Solver >")] {

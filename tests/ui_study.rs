@@ -6,8 +6,8 @@
 
 use cdca::study::row::without_seconds;
 use cdca::study::{RunKind, Study};
-use cdca_workbench::command::{Export, PlotFormat};
-use cdca_workbench::study_file::LoadedStudy;
+use cdca_workbench::state::command::{Export, PlotFormat};
+use cdca_workbench::study::file::LoadedStudy;
 use cdca_workbench::{Command, PlotTab, WorkbenchApp};
 use egui_kittest::Harness;
 use egui_kittest::kittest::{By, NodeT, Queryable};
@@ -24,7 +24,7 @@ fn run_until_finished(h: &mut Harness<'_, WorkbenchApp>, frames: usize) {
     for _ in 0..frames {
         if h.state()
             .file_study()
-            .is_some_and(cdca_workbench::study_file::FileStudy::finished)
+            .is_some_and(cdca_workbench::study::file::FileStudy::finished)
         {
             return;
         }
@@ -167,7 +167,7 @@ fn the_study_tab_runs_a_study_files_first_steps_as_the_cli_does() {
     ignore = "the solver is slow without optimisation: run with --release"
 )]
 fn a_study_file_opened_grows_its_first_points_as_the_cli_does() {
-    let single = cdca_workbench::scenes::BUNDLED[0].json;
+    let single = cdca_workbench::files::scenes::BUNDLED[0].json;
     let text = format!(
         r#"{{"name":"coarse growth","scene":{single},
             "set":{{"mesh.nx":30,"mesh.ny":30,"growth.max_steps":3}},

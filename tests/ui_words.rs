@@ -3,7 +3,7 @@
 //! default run starts every crack in the intact rock and grows no flaw
 //! tip. They drive the solver: run them with `--release`.
 
-use cdca_workbench::command::Command;
+use cdca_workbench::state::command::Command;
 use cdca_workbench::{Options, PlotTab, WorkbenchApp};
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};

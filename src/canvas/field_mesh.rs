@@ -6,7 +6,7 @@ use cdca::scene::Material;
 use egui::{Align2, Color32, FontId, Mesh, Painter, Pos2, Rect, Stroke, Vec2, pos2, vec2};
 
 use super::view::ViewTransform;
-use crate::field::{FieldKey, FieldKind, FieldSamples, Rock, value_range};
+use crate::results::field::{FieldKey, FieldKind, FieldSamples, Rock, value_range};
 
 /// What a cached mesh was built from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -213,7 +213,7 @@ pub fn paint_legend(
         painter.text(
             p + Vec2::X * 2.0,
             Align2::LEFT_CENTER,
-            crate::units::significant(v),
+            crate::style::units::significant(v),
             font.clone(),
             text_color,
         );

@@ -7,58 +7,19 @@ mod view;
 
 use cdca::scene::SceneFile;
 use egui::{Align2, FontId, Key, PointerButton, Pos2, Response, Sense, Stroke, Ui};
-use serde::{Deserialize, Serialize};
 
-use crate::command::Command;
-use crate::edit::{Editor, Tool, VertexRef, move_vertex};
-use crate::field::{FieldKind, FieldSamples};
-use crate::solution::SolutionView;
-use crate::units;
+use crate::results::field::{FieldKind, FieldSamples};
+use crate::results::solution::SolutionView;
+use crate::state::command::Command;
+use crate::state::edit::{Editor, Tool, VertexRef, move_vertex};
+use crate::state::settings::ViewSettings;
+use crate::style::units;
 use field_mesh::{FieldMesh, MeshKey, paint_legend};
 pub use symbols::{SECONDARY_COLOR, SECONDARY_KEY};
 pub use view::ViewTransform;
 
 /// The accessible name of the canvas (tests find it by this label).
 pub const CANVAS_LABEL: &str = "Specimen canvas";
-
-/// How the specimen is shown (persisted). Independent switches, so bools.
-#[allow(clippy::struct_excessive_bools)]
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
-pub struct ViewSettings {
-    pub field: FieldKind,
-    pub show_mesh: bool,
-    pub show_loads: bool,
-    pub show_contact: bool,
-    pub show_traction_arrows: bool,
-    pub deformed: bool,
-    /// Deformation magnification; `None` picks one so the largest
-    /// displacement shows as 5 % of the specimen.
-    pub deform_scale: Option<f64>,
-    /// Colour range from the 1st–99th percentiles instead of min–max.
-    pub clip_range: bool,
-    /// Field samples per element side.
-    pub samples_per_cell: usize,
-    /// Frame-time overlay.
-    pub frame_overlay: bool,
-}
-
-impl Default for ViewSettings {
-    fn default() -> Self {
-        Self {
-            field: FieldKind::default(),
-            show_mesh: false,
-            show_loads: true,
-            show_contact: true,
-            show_traction_arrows: true,
-            deformed: false,
-            deform_scale: None,
-            clip_range: true,
-            samples_per_cell: 2,
-            frame_overlay: false,
-        }
-    }
-}
 
 /// What the canvas shows this frame.
 pub struct CanvasInput<'a> {
@@ -444,7 +405,7 @@ impl Canvas {
         }
         let pos = self.view.rect.left_bottom() + egui::vec2(8.0, -8.0);
         // the theme's text colour: grey 120 measured 4.4:1 on the light
-        // theme's canvas (`crate::contrast`)
+        // theme's canvas (`crate::style::contrast`)
         let colour = painter.ctx().global_style().visuals.text_color();
         painter.text(
             pos,

@@ -8,7 +8,7 @@ use cdca::{ContactPointView, ContactState};
 use egui::{Align2, Color32, FontId, Painter, Pos2, Shape, Stroke, Vec2, vec2};
 
 use super::view::ViewTransform;
-use crate::units;
+use crate::style::units;
 
 pub const LOAD_COLOR: Color32 = Color32::from_rgb(230, 60, 60);
 pub const SUPPORT_COLOR: Color32 = Color32::from_rgb(90, 160, 255);

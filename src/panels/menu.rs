@@ -3,18 +3,18 @@
 
 use egui::{Key, KeyboardShortcut, Modifiers, Rect, Ui};
 
-use crate::command::{Command, Export};
-use crate::edit::Tool;
-use crate::field::FieldKind;
-use crate::frame_stats::FrameStats;
-use crate::job::Waiting;
-use crate::layout::TEXT_SCALES;
-use crate::path_prompt::PathPrompt;
-use crate::scenes::BUNDLED;
-use crate::units;
-use crate::view::{AppView, Message, ViewState};
+use crate::files::path_prompt::PathPrompt;
+use crate::files::scenes::BUNDLED;
+use crate::results::field::FieldKind;
+use crate::state::command::{Command, Export};
+use crate::state::edit::Tool;
+use crate::state::frame_stats::FrameStats;
+use crate::state::job::Waiting;
+use crate::state::layout::TEXT_SCALES;
+use crate::state::view::{AppView, Message, ViewState};
+use crate::style::units;
 
-/// What Copy link shares, said beside it (see [`crate::link`]).
+/// What Copy link shares, said beside it (see [`crate::files::link`]).
 const LINK_SHARES: &str = "The scene as drawn, not the run (its grown cracks, story and \
      plots stay here). An edit or Reset takes the link out of the address.";
 
@@ -254,7 +254,7 @@ pub fn toolbar_ui(ui: &mut Ui, v: &AppView, state: &mut ViewState, cmds: &mut Ve
 
 /// The canvas's layers: mesh, loads, contact, traction arrows, deformed
 /// shape and its scale.
-fn layers_ui(ui: &mut Ui, v: &AppView, s: &mut crate::canvas::ViewSettings) {
+fn layers_ui(ui: &mut Ui, v: &AppView, s: &mut crate::state::settings::ViewSettings) {
     ui.checkbox(&mut s.show_mesh, "Mesh");
     ui.checkbox(&mut s.show_loads, "Loads & supports");
     if !v.scene.cracks.is_empty() {

@@ -1,6 +1,6 @@
-//! Side, top and bottom panels. Each reads a [`crate::view::AppView`] and
+//! Side, top and bottom panels. Each reads a [`crate::state::view::AppView`] and
 //! pushes [`crate::Command`]s; view-only settings (what to draw) are edited
-//! in place through a [`crate::view::ViewState`]. No panel sees the app.
+//! in place through a [`crate::state::view::ViewState`]. No panel sees the app.
 
 pub mod menu;
 pub mod plots;
@@ -11,4 +11,5 @@ pub mod solver;
 pub mod story;
 pub mod study_file;
 pub mod tip;
+mod typed;
 mod widgets;

@@ -1,7 +1,7 @@
 //! The plot panel: the residual against sweeps and time, K_I and K_II,
 //! angles and load factor against growth step, the solver race's error
 //! against run time, and the parameter study. Each plot is a
-//! [`Figure`](crate::figure::Figure) from [`figures`](crate::figures):
+//! [`Figure`](crate::plots::figure::Figure) from [`figures`](crate::plots::figures):
 //! tick values on both axes (angles every 15° or 30°), titles with units,
 //! the legend above the data (never on it), notes on surprising points, and
 //! CSV and SVG export. A plot with nothing to show is replaced by a line
@@ -13,16 +13,16 @@ use egui_plot::{
     VLine,
 };
 
-use crate::command::{Command, Export, PlotFormat};
-use crate::compare::Race;
-use crate::figure::{Figure, Marker, NOTE_MARKS, Style, YTicks, tick_label, tick_step};
-use crate::figures::figures;
-use crate::plot_tab::PlotTab;
-use crate::solution::SolutionView;
+use crate::plots::figure::{Figure, Marker, NOTE_MARKS, Style, YTicks, tick_label, tick_step};
+use crate::plots::figures::{Plotted, figures};
+use crate::plots::plot_tab::PlotTab;
+use crate::results::solution::SolutionView;
+use crate::state::command::{Command, Export, PlotFormat};
+use crate::state::view::AppView;
+use crate::study::file::StudyFileSetup;
+use crate::study::race::Race;
 use crate::study::{SUGGESTED_PATHS, Study, StudySetup, param_unit};
-use crate::study_file::StudyFileSetup;
-use crate::units;
-use crate::view::AppView;
+use crate::style::units;
 
 /// Width the plot tabs take in one row, points; a narrower panel lists
 /// them in a drop-down.
@@ -76,7 +76,13 @@ pub fn plots_ui(
     }
     let tab = v.plot_tab;
     let specimen = [v.scene.specimen.width, v.scene.specimen.height];
-    let figs = figures(tab, v.solution, v.race, v.study, specimen);
+    let figs = figures(
+        tab,
+        v.solution,
+        v.race.map(|r| r as &dyn Plotted),
+        v.study.map(|s| s as &dyn Plotted),
+        specimen,
+    );
     match tab {
         PlotTab::SolverComparison => race_ui(ui, v.race, &figs, cmds),
         PlotTab::Study | PlotTab::StudyMap => {

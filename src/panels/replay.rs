@@ -7,9 +7,9 @@
 
 use egui::Ui;
 
-use crate::command::Command;
-use crate::replay::{Replay, marks};
-use crate::solution::SolutionView;
+use crate::results::replay::{Replay, marks};
+use crate::results::solution::SolutionView;
+use crate::state::command::Command;
 
 /// The events list's text while the step shown is none of them.
 pub const REPLAY_EVENTS_HINT: &str = "Go to an event";

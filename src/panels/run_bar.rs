@@ -7,10 +7,10 @@
 
 use egui::{Button, Ui};
 
-use crate::command::Command;
-use crate::job::Job;
 use crate::run::RunMode;
-use crate::view::AppView;
+use crate::state::command::Command;
+use crate::state::job::Job;
+use crate::state::view::AppView;
 
 pub fn run_bar_ui(ui: &mut Ui, v: &AppView, replay_shown: bool, cmds: &mut Vec<Command>) {
     let ended = v.solution.outcome.is_some();

@@ -10,11 +10,11 @@ use cdca::scene::{
 use egui::{CollapsingHeader, Grid, Ui};
 
 use super::widgets::{EditTracker, Typed, choice, count_row, optional_row, quantity_row};
-use crate::command::Command;
-use crate::edit::{Editor, Tool};
-use crate::solution::{SolutionView, polyline_length};
-use crate::typed;
-use crate::units::{self, MM_PER_M, PA_PER_GPA, PA_PER_MPA};
+use crate::panels::typed;
+use crate::results::solution::{SolutionView, polyline_length};
+use crate::state::command::Command;
+use crate::state::edit::{Editor, Tool};
+use crate::style::units::{self, MM_PER_M, PA_PER_GPA, PA_PER_MPA};
 
 const MM: f64 = 1.0 / MM_PER_M;
 

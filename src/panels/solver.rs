@@ -9,13 +9,13 @@ use cdca::solvers::automaton::sor_omega;
 use egui::{Button, Grid, ProgressBar, Ui};
 
 use super::widgets::{EditTracker, choice, count_row, quantity_row};
-use crate::command::Command;
-use crate::compare::solver_name;
-use crate::job::{Job, capitalised};
+use crate::results::solution::SecondStart;
 use crate::run::RunMode;
-use crate::solution::SecondStart;
-use crate::units;
-use crate::view::AppView;
+use crate::state::command::Command;
+use crate::state::job::{Job, capitalised};
+use crate::state::view::AppView;
+use crate::study::race::solver_name;
+use crate::style::units;
 
 pub const SOLVERS: [SolverKind; 4] = [
     SolverKind::Direct,
@@ -317,7 +317,7 @@ fn pace_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
     if iterative {
         ui.weak(format!(
             "Growth solves to |r|/|f| ≤ {:.0e} (K_I, K_II within 1e-6 of the direct solver on the default scene), warm-started from the last state.",
-            crate::runner::GROWTH_TOLERANCE
+            crate::run::runner::GROWTH_TOLERANCE
         ));
     }
 }
@@ -699,7 +699,7 @@ fn intact_rock_row(ui: &mut Ui, r: &cdca::report::IntactRockReport) {
 /// their Scene panel names, its size in elements, its centre in mm.
 fn free_piece_words(
     piece: &cdca::report::FreePieceReport,
-    view: &crate::solution::SolutionView,
+    view: &crate::results::solution::SolutionView,
 ) -> String {
     let mut names: Vec<String> = piece.cracks.iter().map(|&c| view.crack_name(c)).collect();
     names.dedup();
@@ -769,7 +769,7 @@ fn iterations(kind: SolverKind, n: usize) -> String {
 
 /// The growth run's progress line: step, λ, iterations and residual of the
 /// step's solve.
-fn growth_progress(view: &crate::solution::SolutionView) -> String {
+fn growth_progress(view: &crate::results::solution::SolutionView) -> String {
     let step = view.steps_done + 1;
     if let Some(done) = view.rebuild {
         return format!(
@@ -791,7 +791,7 @@ fn growth_progress(view: &crate::solution::SolutionView) -> String {
 /// Results that did not converge, in the warning colour with the
 /// iteration count and residual: a relaxation that ended at a cap, a growth
 /// step whose solve did not converge.
-fn unconverged_ui(ui: &mut Ui, view: &crate::solution::SolutionView) {
+fn unconverged_ui(ui: &mut Ui, view: &crate::results::solution::SolutionView) {
     let warn = ui.visuals().warn_fg_color;
     if let Some(r) = view.relax.filter(|r| r.finished && !r.converged) {
         // the test that failed in the solver's words (as `cdca solve`

@@ -5,7 +5,7 @@
 
 use egui::Ui;
 
-use crate::view::AppView;
+use crate::state::view::AppView;
 
 /// Window width below which the story is told in small text, points.
 const PHONE_WIDTH: f32 = 500.0;
@@ -14,7 +14,7 @@ const PHONE_WIDTH: f32 = 500.0;
 /// and where it shows; nothing while a run goes on or before one ended.
 pub fn story_ui(ui: &mut Ui, v: &AppView) -> Option<egui::Rect> {
     let view = v.solution;
-    let story = crate::story::story(view, v.scene)?;
+    let story = crate::results::story::story(view, v.scene)?;
     let colour = if story.went_wrong {
         ui.visuals().warn_fg_color
     } else {

@@ -8,13 +8,13 @@
 use egui::{ProgressBar, Ui};
 use egui_extras::{Column, TableBuilder};
 
-use crate::command::{Command, Export};
-use crate::figure::Figure;
-use crate::study_file::{
+use crate::plots::figure::Figure;
+use crate::state::command::{Command, Export};
+use crate::state::view::AppView;
+use crate::study::file::{
     BUNDLED_STUDIES, FileStudy, LoadedStudy, MapColour, StudyFileSetup, input_text,
 };
-use crate::units;
-use crate::view::AppView;
+use crate::style::units;
 
 /// Height of one figure (legend, plot and its axes), px: the plot itself
 /// keeps about 300.
@@ -194,7 +194,7 @@ fn describe(ui: &mut Ui, loaded: &LoadedStudy) {
     let axes: Vec<String> = s
         .axes
         .iter()
-        .map(|a| crate::study_map::axis_label(a).0)
+        .map(|a| crate::study::map::axis_label(a).0)
         .collect();
     let text = format!(
         "{} points, {} over {}",
@@ -236,7 +236,7 @@ fn rows_table(ui: &mut Ui, run: &FileStudy) {
     let axes = &run.study.axes;
     // the axes as the map names them, in the UI's units (the header read
     // `flaws.angle_deg`), the field's path on hover
-    let titles: Vec<(String, f64)> = axes.iter().map(crate::study_map::axis_label).collect();
+    let titles: Vec<(String, f64)> = axes.iter().map(crate::study::map::axis_label).collect();
     let row_height = ui.text_style_height(&egui::TextStyle::Body) + 4.0;
     egui::ScrollArea::horizontal()
         .id_salt("study file rows")

@@ -8,12 +8,12 @@ use cdca::scene::SceneFile;
 use egui::{Color32, Grid, Ui};
 use egui_plot::{Line, LineStyle, Plot, PlotPoints};
 
-use crate::command::Command;
-use crate::figure::Style;
 use crate::panels::plots::swatch;
+use crate::plots::figure::Style;
 use crate::run::RunMode;
-use crate::units;
-use crate::view::AppView;
+use crate::state::command::Command;
+use crate::state::view::AppView;
+use crate::style::units;
 
 const SIGMA_COLOR: Color32 = Color32::from_rgb(70, 140, 255);
 const TAU_COLOR: Color32 = Color32::from_rgb(255, 150, 40);
@@ -88,7 +88,7 @@ pub fn tip_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
 
 /// A replayed step's tips as that step's solve had them, named as the
 /// cracks were then (the run's end named cracks that did not yet exist).
-fn replayed_tips_ui(ui: &mut Ui, snapshot: &crate::replay::Snapshot) {
+fn replayed_tips_ui(ui: &mut Ui, snapshot: &crate::results::replay::Snapshot) {
     let view = &snapshot.view;
     ui.label(format!(
         "Replaying step {}: the free tips of its solve at λ = {:.3}.",

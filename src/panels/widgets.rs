@@ -4,14 +4,14 @@
 //! widget's range (from a scene file) is shown as it is, not clamped: only
 //! a drag is held to the range. A typed value is never clamped nor
 //! dropped: the tracker holds it, and the panel takes it or refuses it
-//! with a message ([`crate::typed`]).
+//! with a message ([`crate::panels::typed`]).
 
 use std::cell::RefCell;
 use std::ops::RangeInclusive;
 
 use egui::{DragValue, Response, Ui};
 
-use crate::typed::{self, Shown};
+use crate::panels::typed::{self, Shown};
 
 /// Collects what the scene widgets did this frame.
 #[derive(Debug, Default)]
@@ -128,7 +128,7 @@ fn quantity_field(
         drag = drag.suffix(format!(" {unit}"));
     }
     if significant {
-        drag = drag.custom_formatter(|v, _| crate::units::significant(v));
+        drag = drag.custom_formatter(|v, _| crate::style::units::significant(v));
     }
     let r = ui.add(handing_back_text(drag, &text)).labelled_by(label_id);
     if r.changed() {
@@ -196,7 +196,7 @@ pub fn optional_row(
         } else {
             ui.weak(format!(
                 "{} {unit}",
-                crate::units::significant(auto_value_si / per_unit)
+                crate::style::units::significant(auto_value_si / per_unit)
             ));
         }
     });

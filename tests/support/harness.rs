@@ -2,7 +2,7 @@
 //! tests: a harness at a window size, and the waits for a run to end.
 #![allow(dead_code)] // each test file uses its own part
 
-use cdca_workbench::command::Command;
+use cdca_workbench::state::command::Command;
 use cdca_workbench::study::{Study, StudySetup};
 use cdca_workbench::{Options, RunMode, WorkbenchApp};
 use egui_kittest::Harness;
@@ -59,7 +59,7 @@ pub fn run_until_paused(h: &mut Harness<'_, WorkbenchApp>, frames: usize) {
 /// Opens the bundled scene `file` (`assets/scenes/`) and waits for its
 /// solve.
 pub fn open_bundled(h: &mut Harness<'_, WorkbenchApp>, file: &str) {
-    let i = cdca_workbench::scenes::BUNDLED
+    let i = cdca_workbench::files::scenes::BUNDLED
         .iter()
         .position(|b| b.file == file)
         .expect("bundled");

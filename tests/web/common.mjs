@@ -5,7 +5,7 @@
 //
 // The page is opened with `?cdca_test`, which makes the app publish its
 // widgets (label and rectangle, from egui's AccessKit tree) as
-// `window.cdcaWidgets` and its state as `window.cdcaState` (src/web.rs).
+// `window.cdcaWidgets` and its state as `window.cdcaState` (src/app/web.rs).
 import { chromium } from "playwright-core";
 import { readFileSync } from "node:fs";
 import { deflateRawSync } from "node:zlib";
@@ -79,7 +79,7 @@ export async function open(page, url, hash = "") {
     log("app started");
 }
 
-// The app's state (src/web.rs), waiting on it, and clicks by label.
+// The app's state (src/app/web.rs), waiting on it, and clicks by label.
 export function hooks(page) {
     const state = () => page.evaluate(() => window.cdcaState);
     const waitState = (pred, what, timeout = STEP_TIMEOUT_MS, arg = null) =>
@@ -116,7 +116,7 @@ export function hooks(page) {
 
 // A bundled scene (assets/scenes/FILE) as a shared link's fragment,
 // `scene=…` (raw deflate, base64url: what File ▸ Copy link to this scene
-// writes, src/link.rs), with `edit` applied to the scene first.
+// writes, src/files/link.rs), with `edit` applied to the scene first.
 export function sceneLink(file, edit = (s) => s) {
     const path = new URL(`../../assets/scenes/${file}`, import.meta.url);
     const scene = edit(JSON.parse(readFileSync(path, "utf8")));

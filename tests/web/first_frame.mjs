@@ -4,7 +4,7 @@
 // the first frame laid out (the scene's geometry and the controls) and to
 // the first field shown, as the app notes them (performance.now(), i.e.
 // since the navigation began: window.cdcaState.firstFrameMs and
-// firstFieldMs, src/web.rs). The scenes are first_frame.sh's: the default
+// firstFieldMs, src/app/web.rs). The scenes are first_frame.sh's: the default
 // scene, the bundled k = 0.2, μ = 0.5 plate at 120 × 120 with the
 // automaton solver and at 200 × 200 with the direct solver, the two
 // plates opened as shared links (`#scene=…`). Prints a row per scene

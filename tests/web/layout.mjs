@@ -3,7 +3,7 @@
 // 390 × 844: each after a fresh load at that size and after a resize to
 // it (loaded at 1280 × 800, or 1024 × 640 for 1280 × 800 itself). Asserts
 // from the app's own rectangles (window.cdcaWidgets, window.cdcaState:
-// src/web.rs), as tests/ui_layout.rs does natively:
+// src/app/web.rs), as tests/ui_layout.rs does natively:
 //   - at 1024 × 640 the specimen spans at least half the window's height;
 //   - at 390 × 844 the canvas and the Run growth button are on screen;
 //   - at every size, no key on the canvas (the key, the colour legend, the

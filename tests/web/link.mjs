@@ -4,7 +4,7 @@
 // it shows the drawn scene (the same name and crack points as a fresh
 // page, no growth step), not the run's grown cracks. Reset on the first
 // page takes the link out of its address. Asserts from the app's own
-// state (window.cdcaState, src/web.rs).
+// state (window.cdcaState, src/app/web.rs).
 //
 //   node tests/web/link.mjs URL
 import { START_TIMEOUT_MS, hooks, launch, log, open, problems, watch } from "./common.mjs";

@@ -19,8 +19,8 @@
 // mean X ms, p95 Y ms, max Z ms`, the run's steps and last λ and its
 // time, and adds them to TIMINGS.txt; it fails if no growth step is made.
 // CDCA_RUN_GROWTH_MS=0 skips it; CDCA_FRAMES_ONLY=1 runs the job in the
-// frames only (`?cdca_frames_only`, src/web.rs), as before the work
-// between frames (src/web_work.rs), to compare.
+// frames only (`?cdca_frames_only`, src/app/web.rs), as before the work
+// between frames (src/app/web_work.rs), to compare.
 //
 //   node tests/web/smoke.mjs URL SCREENSHOT.png [TIMINGS.txt]
 //
@@ -139,7 +139,7 @@ try {
     await page.screenshot({ path: screenshotPath });
     log(`screenshot: ${screenshotPath}`);
 
-    // Saving is a download (src/io.rs): the scene as JSON, crack paths as CSV.
+    // Saving is a download (src/files/io.rs): the scene as JSON, crack paths as CSV.
     async function download(label) {
         await click("File");
         const [dl] = await Promise.all([page.waitForEvent("download", { timeout: STEP_TIMEOUT_MS }), click(label)]);
@@ -202,7 +202,7 @@ try {
     problems.push(`test: ${e.message}`);
 }
 
-// Shared links (src/link.rs), each in a page of its own: a page opened with
+// Shared links (src/files/link.rs), each in a page of its own: a page opened with
 // `#scene=…` (raw deflate, base64url: what File ▸ Copy link to this scene
 // writes) shows that scene, solved; a truncated link opens the default
 // scene and says why.
@@ -258,7 +258,7 @@ async function runGrowthFrameTimes() {
     const tag = "[run growth] ";
     const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
     watch(page, tag);
-    // CDCA_FRAMES_ONLY=1: the solver in the frames only (src/web.rs), to
+    // CDCA_FRAMES_ONLY=1: the solver in the frames only (src/app/web.rs), to
     // measure what the idle time gains
     const query = process.env.CDCA_FRAMES_ONLY === "1" ? "?cdca_frames_only" : "";
     await openAt(page, url + query, `#${sceneLink(RUN_GROWTH_SCENE)}`);
@@ -347,10 +347,10 @@ async function runGrowthFrameTimes() {
         .sort((a, b) => b[0] - a[0])
         .slice(0, 5)
         .map(([dt, at, s]) => `${dt.toFixed(0)} ms at ${(at / 1000).toFixed(1)} s (step ${s})`);
-    // The app's own view (src/web.rs): CPU time of logic + UI per frame over
+    // The app's own view (src/app/web.rs): CPU time of logic + UI per frame over
     // its last 240 frames, logged every 2 s.
     const cpu = timings.filter((l) => l.includes(`${tag}`) && l.includes("timing: frames")).pop();
-    // and its work between frames (src/web_work.rs), summed over its reports
+    // and its work between frames (src/app/web_work.rs), summed over its reports
     const between = timings
         .filter((l) => l.includes(`${tag}`) && l.includes("timing: between frames"))
         .map((l) => /between frames (\d+) tasks, (\d+) ms/.exec(l))
@@ -391,7 +391,7 @@ async function runGrowthFrameTimes() {
     return [summary, ...details];
 }
 
-console.log("\n--- timings logged by the app (src/web.rs) ---");
+console.log("\n--- timings logged by the app (src/app/web.rs) ---");
 for (const t of timings) console.log(t);
 if (frameTimes) {
     console.log("");

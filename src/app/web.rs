@@ -41,6 +41,11 @@ pub struct WebApp {
     /// since the page's navigation began (`performance.now()`).
     first_frame_ms: Option<f64>,
     first_field_ms: Option<f64>,
+    /// The page asked for continuous repaint (`?cdca_continuous`): every
+    /// frame asks for the next, idle or not, so that the browser test
+    /// compares frame intervals during a run with those of an idle page
+    /// that paints as often (issue 63's decision).
+    continuous: bool,
 }
 
 impl WebApp {
@@ -81,6 +86,7 @@ impl WebApp {
             test_hooks,
             first_frame_ms: None,
             first_field_ms: None,
+            continuous: page_query().contains("cdca_continuous"),
         }
     }
 
@@ -93,6 +99,9 @@ impl WebApp {
             let _ = js_sys::Reflect::set(&state, &key.into(), &value);
         };
         set("sceneName", app.scene().name.as_str().into());
+        // Whether the solver runs on a Web Worker, off the page's thread
+        // (issue 63): not yet; it runs on the page, between frames.
+        set("worker", false.into());
         set("solved", app.is_solved().into());
         set("fieldShown", app.field_is_shown().into());
         // Sub-cells of the shown field with a finite stress (0: nothing
@@ -302,6 +311,9 @@ impl eframe::App for WebApp {
         self.log_timings();
         if self.test_hooks {
             self.state_to_page(f64::from(ui.ctx().zoom_factor()));
+        }
+        if self.continuous {
+            ui.ctx().request_repaint();
         }
     }
 

@@ -2,14 +2,13 @@
 //! state and runs the job's work, the panels' and the canvas's frame, and
 //! the browser's wrapper. Uses every part below it.
 //!
-//! - this file: `WorkbenchApp`, its state and its frame;
+//! - this file: `WorkbenchApp`, its state, layout, and the per-frame
+//!   logic that applies the UI's commands and runs solver work inside the
+//!   frame budget;
 //! - `apply`: what each command does;
 //! - `restore`: undo and redo applied;
 //! - `web`, `web_work`: the page around the app in a browser, and the
 //!   job's work between frames there.
-//!
-//! The workbench application: state, layout, and the per-frame logic that
-//! applies the UI's commands and runs solver work inside the frame budget.
 
 mod apply;
 mod restore;

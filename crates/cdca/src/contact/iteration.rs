@@ -629,18 +629,22 @@ impl ContactSolve {
             return Ok(Some(self.fall_back(x, u)));
         };
         let relative = |r: &[f64]| relative_to(r, &self.load);
-        // a step taken while many states change is solved loosely; one
-        // that leaves them holding is solved again tightly
-        let changing = self.reached.info.unsettled > 2 || (it == 1 && !self.guessed());
+        // a step taken while many states change, or from the states the
+        // iteration started with (open faces or a guess), is solved
+        // loosely; one that leaves them holding is taken on to the tight
+        // tolerance, from the loose solve's Krylov space
+        let changing = self.reached.info.unsettled > 2 || it == 1;
         let tolerance = if changing {
             LOOSE_KRYLOV_TOLERANCE
         } else {
             KRYLOV_TOLERANCE
         };
-        let take = |tolerance: f64| {
-            newton_step(x, &self.reached.states, &g, &faces, &*solver, tolerance).map(|step| {
-                let mapped = coulomb_states(x, &step.u, committed, &self.reached.states);
-                let force = law_force(x, &self.reached.states, &mapped, committed);
+        let mut krylov = None;
+        let states_now = &self.reached.states;
+        let mut take = |tolerance: f64| {
+            newton_step(x, states_now, &g, &faces, &*solver, tolerance, &mut krylov).map(|step| {
+                let mapped = coulomb_states(x, &step.u, committed, states_now);
+                let force = law_force(x, states_now, &mapped, committed);
                 (step, mapped, force)
             })
         };
@@ -773,12 +777,6 @@ impl ContactSolve {
             return self.fall_back(x, u);
         }
         self.status(self.reached.finished)
-    }
-
-    /// Whether the iteration started from guessed states (some point
-    /// closed), not from open faces.
-    fn guessed(&self) -> bool {
-        self.start.0.iter().any(|s| s.state != ContactState::Open)
     }
 
     /// The damped fixed point takes over, from the states and displacement

@@ -25,7 +25,9 @@
 //! `A⁻¹ U e`. Nothing dense of the slip points' size is formed: a step
 //! costs about the same whatever their number (10–25 Krylov iterations
 //! on the held-out pairs, to [`KRYLOV_TOLERANCE`]; to
-//! [`LOOSE_KRYLOV_TOLERANCE`], 8–12, while many states still change).
+//! [`LOOSE_KRYLOV_TOLERANCE`], 8–12, while many states still change). A
+//! loose step whose law holds is taken on to the tight tolerance from its
+//! own Krylov space ([`krylov`](crate::contact::krylov)), not solved anew.
 //!
 //! The iteration has converged when the law holds at the solution: the
 //! force by which the Coulomb law there differs from the linearised one
@@ -35,6 +37,7 @@
 //! active-set step: Hintermüller, Ito & Kunisch 2002; Hüeber, Stadler &
 //! Wohlmuth 2008).
 
+use crate::contact::krylov::{Gmres, Solved};
 use crate::contact::law::{ContactState, FaceState, jump_operators};
 use crate::contact::limit_newton::by_dof;
 use crate::discretisation::dofs::FIXED;
@@ -47,9 +50,12 @@ use crate::solvers::linear::LinearSolver;
 /// above round-off.
 pub const KRYLOV_TOLERANCE: f64 = 1e-11;
 
-/// Relative residual of a step taken while many states still change
-/// (an inexact Newton step: the next iteration solves its own system
-/// anew, so only the states this step maps to depend on it).
+/// Relative residual of a step taken while many states still change, and
+/// of the first step from the states a contact solve starts with (an
+/// inexact Newton step: the next iteration solves its own system anew, so
+/// only the states this step maps to depend on it; a step whose law holds
+/// goes on to [`KRYLOV_TOLERANCE`] from the same Krylov space, so a loose
+/// start costs nothing where the start was right).
 pub const LOOSE_KRYLOV_TOLERANCE: f64 = 1e-4;
 
 /// The Newton solution on the faces and how its slip system was solved.
@@ -144,6 +150,9 @@ pub(crate) fn cohesive(x: &Xfem, i: usize, g_n: f64) -> bool {
 /// point: all that the states read), from `g` there; `None` when the
 /// solver keeps no factor or GMRES does not reach `tolerance` in as many
 /// iterations as there are slip points (it must, in exact arithmetic).
+/// `krylov` holds the slip system's GMRES solve (`None`: none started):
+/// a second call with the same states and `g` and a tighter tolerance
+/// goes on from the first one's iterations.
 pub(crate) fn newton_step(
     x: &Xfem,
     states: &[FaceState],
@@ -151,6 +160,7 @@ pub(crate) fn newton_step(
     faces: &[usize],
     solver: &dyn LinearSolver,
     tolerance: f64,
+    krylov: &mut Option<Gmres>,
 ) -> Option<NewtonStep> {
     // per slipping point: U's column, V's column and g_N⁰
     let mut u_cols: Vec<SparseColumn> = Vec::new();
@@ -226,10 +236,18 @@ pub(crate) fn newton_step(
                 .collect(),
         )
     };
-    let (e, residual, iterations) = if m <= DENSE_SLIP {
+    let Solved {
+        e,
+        residual,
+        iterations,
+    } = if m <= DENSE_SLIP {
         dense_solve(solver, &v_cols, &u_cols, &rhs)?
     } else {
-        gmres(&mut apply, &rhs, m.min(MAX_KRYLOV), tolerance)?
+        krylov.get_or_insert_with(|| Gmres::new(&rhs)).solve(
+            &mut apply,
+            m.min(MAX_KRYLOV),
+            tolerance,
+        )?
     };
     // u* = g − A⁻¹ U e
     let pull: SparseColumn = spread(&e).into_iter().map(|(d, a)| (d, -a)).collect();
@@ -261,7 +279,7 @@ fn dense_solve(
     v_cols: &[SparseColumn],
     u_cols: &[SparseColumn],
     rhs: &[f64],
-) -> Option<(Vec<f64>, f64, usize)> {
+) -> Option<Solved> {
     let m = v_cols.len();
     let coupling = solver.coupling(v_cols, u_cols)?;
     let a = nalgebra::DMatrix::identity(m, m) + coupling;
@@ -269,120 +287,12 @@ fn dense_solve(
     let e = a.clone().lu().solve(&b)?;
     let residual = norm((&a * &e - &b).as_slice()) / norm(rhs).max(f64::MIN_POSITIVE);
     let e: Vec<f64> = e.iter().copied().collect();
-    e.iter().all(|v| v.is_finite()).then_some((e, residual, m))
+    e.iter().all(|v| v.is_finite()).then_some(Solved {
+        e,
+        residual,
+        iterations: m,
+    })
 }
 
 /// GMRES iterations at most per Newton step.
 pub const MAX_KRYLOV: usize = 300;
-
-/// GMRES (no restart, modified Gram–Schmidt, Givens rotations) for
-/// `op(e) = b`, from `e = 0`, at most `max` iterations: the solution, the
-/// final relative residual and the iterations; `None` when `op` fails or
-/// the tolerance is not met.
-fn gmres(
-    op: &mut dyn FnMut(&[f64]) -> Option<Vec<f64>>,
-    b: &[f64],
-    max: usize,
-    tolerance: f64,
-) -> Option<(Vec<f64>, f64, usize)> {
-    let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
-    let beta = norm(b);
-    if beta == 0.0 {
-        return Some((vec![0.0; b.len()], 0.0, 0));
-    }
-    let mut basis: Vec<Vec<f64>> = vec![b.iter().map(|a| a / beta).collect()];
-    // Hessenberg columns (rotated), rotations, and the rotated rhs
-    let mut h: Vec<Vec<f64>> = Vec::new();
-    let (mut cs, mut sn): (Vec<f64>, Vec<f64>) = (Vec::new(), Vec::new());
-    let mut rhs = vec![beta];
-    for k in 0..max {
-        let mut w = op(&basis[k])?;
-        let mut col = Vec::with_capacity(k + 2);
-        for v in &basis {
-            let hk: f64 = v.iter().zip(&w).map(|(a, b)| a * b).sum();
-            for (wi, vi) in w.iter_mut().zip(v) {
-                *wi -= hk * vi;
-            }
-            col.push(hk);
-        }
-        let next = norm(&w);
-        col.push(next);
-        for j in 0..k {
-            let (a, b) = (col[j], col[j + 1]);
-            col[j] = cs[j] * a + sn[j] * b;
-            col[j + 1] = -sn[j] * a + cs[j] * b;
-        }
-        let r = col[k].hypot(col[k + 1]);
-        let (c, s) = if r == 0.0 {
-            (1.0, 0.0)
-        } else {
-            (col[k] / r, col[k + 1] / r)
-        };
-        col[k] = r;
-        cs.push(c);
-        sn.push(s);
-        rhs.push(-s * rhs[k]);
-        rhs[k] *= c;
-        col.truncate(k + 1);
-        h.push(col);
-        let residual = rhs[k + 1].abs() / beta;
-        if residual <= tolerance || next == 0.0 {
-            // back substitution on the triangle, then e = Σ y_i v_i
-            let mut y = vec![0.0; k + 1];
-            for i in (0..=k).rev() {
-                let s: f64 = (i + 1..=k).map(|j| h[j][i] * y[j]).sum();
-                y[i] = (rhs[i] - s) / h[i][i];
-            }
-            let mut e = vec![0.0; b.len()];
-            for (yi, v) in y.iter().zip(&basis) {
-                for (ei, vi) in e.iter_mut().zip(v) {
-                    *ei += yi * vi;
-                }
-            }
-            return e
-                .iter()
-                .all(|v| v.is_finite())
-                .then_some((e, residual, k + 1));
-        }
-        basis.push(w.iter().map(|a| a / next).collect());
-    }
-    None
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// GMRES on a non-symmetric 4 × 4 system `(I + M) e = b` (M with
-    /// entries ±0.3) against its solution by LU: equal to 1e-12, in at
-    /// most 4 iterations (the dimension).
-    #[test]
-    fn gmres_solves_a_small_nonsymmetric_system() {
-        let m = nalgebra::DMatrix::from_row_slice(
-            4,
-            4,
-            &[
-                1.0, 0.3, -0.2, 0.0, //
-                -0.3, 1.2, 0.1, 0.25, //
-                0.05, -0.1, 0.9, 0.3, //
-                0.2, 0.0, -0.3, 1.1,
-            ],
-        );
-        let b = nalgebra::DVector::from_vec(vec![1.0, -2.0, 0.5, 3.0]);
-        let exact = m.clone().lu().solve(&b).expect("regular");
-        let mut op = |v: &[f64]| {
-            Some(
-                (&m * nalgebra::DVector::from_column_slice(v))
-                    .as_slice()
-                    .to_vec(),
-            )
-        };
-        let (e, residual, iterations) =
-            gmres(&mut op, b.as_slice(), 10, KRYLOV_TOLERANCE).expect("converges");
-        assert!(iterations <= 4, "{iterations} iterations");
-        assert!(residual <= KRYLOV_TOLERANCE);
-        for (a, b) in e.iter().zip(exact.iter()) {
-            assert!((a - b).abs() <= 1e-12 * exact.amax(), "{e:?} vs {exact}");
-        }
-    }
-}

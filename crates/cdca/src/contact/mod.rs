@@ -13,7 +13,7 @@
 
 pub mod in_sweep;
 pub mod iteration;
-pub mod krylov;
+pub(crate) mod krylov;
 pub mod law;
 pub mod limit_mix;
 pub mod limit_newton;

@@ -27,7 +27,7 @@
 //! on the held-out pairs, to [`KRYLOV_TOLERANCE`]; to
 //! [`LOOSE_KRYLOV_TOLERANCE`], 8–12, while many states still change). A
 //! loose step whose law holds is taken on to the tight tolerance from its
-//! own Krylov space ([`krylov`](crate::contact::krylov)), not solved anew.
+//! own Krylov space (`contact::krylov`), not solved anew.
 //!
 //! The iteration has converged when the law holds at the solution: the
 //! force by which the Coulomb law there differs from the linearised one

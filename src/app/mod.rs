@@ -505,13 +505,11 @@ impl WorkbenchApp {
     /// the scene's largest boundary traction (`FieldScale`), if a field
     /// shows.
     pub fn shown_field_scale(&self) -> Option<crate::results::field::FieldScale> {
-        let b = &self.scene.boundary;
-        let traction = [b.bottom, b.left, b.top, b.right]
+        use cdca::discretisation::boundary::Side;
+        let traction = Side::ALL
             .iter()
-            .map(|side| match side {
-                cdca::scene::SideBc::Traction { normal, shear } => normal.hypot(*shear),
-                _ => 0.0,
-            })
+            .filter_map(|side| side.traction(&self.scene.boundary))
+            .map(|[x, y]| x.hypot(y))
             .fold(0.0, f64::max);
         self.runner.field().current().map(|f| f.scale(traction))
     }

@@ -9,7 +9,7 @@
 //! ([`BetweenFrames`]); the app is shared with those tasks, hence the
 //! `Rc<RefCell<…>>`.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::rc::Rc;
 
 use wasm_bindgen::JsValue;
@@ -18,6 +18,7 @@ use web_time::{Duration, Instant};
 use crate::app::WorkbenchApp;
 use crate::app::web_work::BetweenFrames;
 use crate::files::io;
+use crate::results::field::{FieldKey, FieldScale};
 use crate::state::command::Command;
 use crate::state::view::Message;
 
@@ -46,7 +47,14 @@ pub struct WebApp {
     /// compares frame intervals during a run with those of an idle page
     /// that paints as often (issue 63's decision).
     continuous: bool,
+    /// The shown field's scale and what it was worked out for (the field's
+    /// key and load factor): once per field, not every frame (it sorts
+    /// every sample's stresses).
+    field_scale: Cell<Option<ScaleOf>>,
 }
+
+/// A field's key, its load factor's bits, and its scale.
+type ScaleOf = (FieldKey, u64, Option<FieldScale>);
 
 impl WebApp {
     pub fn new(cc: &eframe::CreationContext<'_>) -> Self {
@@ -87,7 +95,26 @@ impl WebApp {
             first_frame_ms: None,
             first_field_ms: None,
             continuous: page_query().contains("cdca_continuous"),
+            field_scale: Cell::new(None),
         }
+    }
+
+    /// [`WorkbenchApp::shown_field_scale`], worked out again only when the
+    /// field shown changes.
+    fn shown_field_scale(&self, app: &WorkbenchApp) -> Option<FieldScale> {
+        let shown = app
+            .runner
+            .field()
+            .current()
+            .map(|f| (f.key, f.load_factor.to_bits()))?;
+        if let Some((key, bits, scale)) = self.field_scale.get()
+            && (key, bits) == shown
+        {
+            return scale;
+        }
+        let scale = app.shown_field_scale();
+        self.field_scale.set(Some((shown.0, shown.1, scale)));
+        scale
     }
 
     /// For the browser test: what it asserts on, as `window.cdcaState`;
@@ -115,7 +142,7 @@ impl WebApp {
         // (`FieldScale::is_a_field`); null without a field.
         set(
             "fieldScale",
-            app.shown_field_scale().map_or(JsValue::NULL, |f| {
+            self.shown_field_scale(&app).map_or(JsValue::NULL, |f| {
                 let o = js_sys::Object::new();
                 for (key, value) in [
                     ("peak", JsValue::from(f.peak)),

@@ -171,19 +171,24 @@ mod tests {
         (m, nalgebra::DVector::from_vec(vec![1.0, -2.0, 0.5, 3.0]))
     }
 
+    /// `v ↦ m v`, as GMRES applies its operator.
+    fn product(m: &nalgebra::DMatrix<f64>) -> impl FnMut(&[f64]) -> Option<Vec<f64>> + '_ {
+        move |v| {
+            Some(
+                (m * nalgebra::DVector::from_column_slice(v))
+                    .as_slice()
+                    .to_vec(),
+            )
+        }
+    }
+
     /// GMRES on the system against its solution by LU: equal to 1e-12, in
     /// at most 4 iterations (the dimension).
     #[test]
     fn gmres_solves_a_small_nonsymmetric_system() {
         let (m, b) = system();
         let exact = m.clone().lu().solve(&b).expect("regular");
-        let mut op = |v: &[f64]| {
-            Some(
-                (&m * nalgebra::DVector::from_column_slice(v))
-                    .as_slice()
-                    .to_vec(),
-            )
-        };
+        let mut op = product(&m);
         let s = Gmres::new(b.as_slice())
             .solve(&mut op, 10, 1e-11)
             .expect("converges");
@@ -203,13 +208,7 @@ mod tests {
     #[test]
     fn a_loose_solve_taken_on_is_the_tight_solve() {
         let (m, b) = system();
-        let mut op = |v: &[f64]| {
-            Some(
-                (&m * nalgebra::DVector::from_column_slice(v))
-                    .as_slice()
-                    .to_vec(),
-            )
-        };
+        let mut op = product(&m);
         let tight = Gmres::new(b.as_slice())
             .solve(&mut op, 10, 1e-11)
             .expect("converges");

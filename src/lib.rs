@@ -9,7 +9,8 @@
 //! - `files`: scenes and files opened, saved and shared;
 //! - `results`: what a run leaves (solution view, field, replay, story,
 //!   exports);
-//! - `run`: how work runs (the runner, its runs, the growth thread);
+//! - `run`: how work runs (the host of the simulation, its runs, the run
+//!   protocol and its links, the UI's runner);
 //! - `plots`: the figures of a solve and a run;
 //! - `study`: studies and the solver race, and their plots;
 //! - `state`: what the user asks for (commands, the app's view, edits,
@@ -32,4 +33,5 @@ mod style;
 pub use app::{Options, StartRun, WorkbenchApp};
 pub use plots::plot_tab::PlotTab;
 pub use run::RunMode;
+pub use run::host::host_calls_on_this_thread;
 pub use state::command::Command;

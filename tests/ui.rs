@@ -1128,12 +1128,8 @@ fn relax_with_the_automaton_shows_the_field_before_convergence() {
     ignore = "the solver is slow without optimisation: run with --release"
 )]
 fn run_growth_with_an_iterative_solver_advances_every_frame() {
-    // the sliced run (the browser's): natively growth runs on a thread of
-    // its own, which frames do not advance
-    let mut h = harness(Options {
-        growth_thread: false,
-        ..Options::default()
-    });
+    // the host in-process (frames advance it)
+    let mut h = harness(Options::default());
     h.run_steps(3);
     with_solver(&mut h, cdca::scene::SolverKind::Automaton);
     assert_eq!(

@@ -37,8 +37,8 @@ fn check_every_frame(h: &mut Harness<'_, WorkbenchApp>, frames: usize, what: &st
     checked
 }
 
-/// Run growth on the stepped pair, with its direct solver on the growth
-/// thread (native) and in frame slices (the browser's run), and with the
+/// Run growth on the stepped pair, with its direct solver on the host's
+/// thread (native) and in frame slices (the host in-process), and with the
 /// automaton (growth accelerated to multigrid-CG, whose iterates show
 /// live) in frame slices: every frame's field is a real one.
 #[test]
@@ -54,7 +54,7 @@ fn no_frame_of_a_run_shows_a_vanished_or_garbled_field() {
         (false, SolverKind::Automaton),
     ] {
         let mut h = harness(Options {
-            growth_thread: thread,
+            host_thread: thread,
             ..Options::default()
         });
         h.run_steps(2);
@@ -79,7 +79,7 @@ fn no_frame_of_a_run_shows_a_vanished_or_garbled_field() {
         let what = format!(
             "{solver:?}, {}",
             if thread {
-                "growth thread"
+                "host thread"
             } else {
                 "frame slices"
             }

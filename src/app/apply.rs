@@ -9,7 +9,6 @@ use crate::files::{io, scenes};
 use crate::plots::figure::Figure;
 use crate::plots::figures::Plotted;
 use crate::plots::plot_tab::PlotTab;
-use crate::results::export;
 use crate::state::command::{Command, Export, PlotFormat};
 use crate::state::job::{Job, Waiting};
 use crate::state::view::Message;
@@ -19,11 +18,6 @@ use crate::study::race::Race;
 
 impl WorkbenchApp {
     pub(crate) fn run_cmd(&mut self, ctx: &egui::Context, cmd: Command) {
-        if touches_simulation(&cmd) {
-            // natively the growth thread gives it back (the run goes on
-            // at the next frame unless the command changes it)
-            self.runner.park();
-        }
         // one job at a time: another job asked for while one runs waits for
         // the user to cancel the running one (a job asked for again
         // restarts or goes on, as before)
@@ -108,31 +102,25 @@ impl WorkbenchApp {
             Command::Solve => {
                 if self.ensure_simulation() {
                     // after growth it solves the grown cracks, at the last load
-                    let grown = self
-                        .runner
-                        .simulation()
-                        .is_some_and(|s| !s.history().is_empty());
+                    let grown = self.runner.is_grown();
                     let steps = self.runner.view().steps_done;
-                    match self.runner.solve() {
-                        Ok(kept) if grown => {
-                            // Undo brings the run back as it ended
-                            self.record_run(kept);
-                            // a grown scene resumes at its last step's load
-                            let lambda = self.runner.view().load_factor;
-                            self.message = Some(Message::Info(format!(
-                                "Solving the cracks as grown (after growth step {steps}) at the \
+                    let kept = self.runner.solve();
+                    if grown {
+                        // Undo brings the run back as it ended
+                        self.record_run(kept);
+                        // a grown scene resumes at its last step's load
+                        let lambda = self.runner.view().load_factor;
+                        self.message = Some(Message::Info(format!(
+                            "Solving the cracks as grown (after growth step {steps}) at the \
                                  run's last load, λ = {lambda:.3}. The run's steps stay in the \
                                  plots."
-                            )));
-                        }
-                        r => self.show_error(r.map(drop)),
+                        )));
                     }
                 }
             }
             Command::Step => {
                 if self.ensure_simulation() {
-                    let r = self.runner.step();
-                    self.show_error(r);
+                    self.runner.step();
                 }
             }
             Command::Relax => {
@@ -144,8 +132,7 @@ impl WorkbenchApp {
                 self.replay_step = None;
                 if self.ensure_simulation() {
                     let one = matches!(cmd, Command::GrowOne);
-                    let r = self.runner.start_growth(one);
-                    self.show_error(r);
+                    self.runner.start_growth(one);
                 }
             }
             Command::SetPace(pace) => self.runner.set_pace(pace),
@@ -203,7 +190,7 @@ impl WorkbenchApp {
                 let checked = self.runner.checked().and_then(|s| {
                     let mut file = cdca::scene::SceneFile::clone(s);
                     file.solver.kind = cdca::scene::SolverKind::Direct;
-                    crate::run::runner::interactive_mesh(&file).map(|()| s)
+                    crate::run::host::interactive_mesh(&file).map(|()| s)
                 });
                 match checked {
                     Ok(scene) => self.race = Some(Race::new(scene, time_cap)),
@@ -304,18 +291,12 @@ impl WorkbenchApp {
         };
     }
 
-    fn show_error(&mut self, result: Result<(), String>) {
-        if let Err(e) = result {
-            self.message = Some(Message::Error(e));
-        }
-    }
-
     /// A simulation of the current scene exists (rebuilt if the scene changed).
     fn ensure_simulation(&mut self) -> bool {
-        if self.runner.is_stale() || self.runner.simulation().is_none() {
+        if self.runner.is_stale() || !self.runner.has_simulation() {
             self.rebuild();
         }
-        self.runner.simulation().is_some()
+        self.runner.has_simulation()
     }
 
     fn rebuild(&mut self) {
@@ -349,12 +330,13 @@ impl WorkbenchApp {
 
     /// Solves the scene now (building its simulation first if needed).
     fn solve_scene(&mut self) {
-        if self.runner.is_stale() || self.runner.simulation().is_none() {
+        if self.runner.is_stale() || !self.runner.has_simulation() {
             self.rebuild();
         }
-        if self.runner.simulation().is_some() {
-            let r = self.runner.solve();
-            self.show_error(r.map(drop));
+        if self.runner.has_simulation() {
+            // (an edit's re-solve keeps no run: an edit after growth
+            // recorded it already)
+            drop(self.runner.solve());
         }
     }
 
@@ -365,13 +347,9 @@ impl WorkbenchApp {
         if !(self.dragging && self.follows_drag()) {
             return;
         }
-        match self.runner.follow_drag() {
-            Ok(true) => {
-                self.drag_followed = true;
-                ctx.request_repaint();
-            }
-            Ok(false) => {}
-            Err(e) => self.message = Some(Message::Error(e)),
+        if self.runner.follow_drag() {
+            self.drag_followed = true;
+            ctx.request_repaint();
         }
     }
 
@@ -575,24 +553,13 @@ impl WorkbenchApp {
                 ("CSV", "csv"),
                 self.history_csv().as_bytes(),
             ),
-            Export::Fields => match self
-                .runner
-                .simulation()
-                .filter(|_| self.runner.view().solved)
-            {
-                None => Err("solve the scene before exporting its fields".to_owned()),
-                Some(sim) => {
-                    let vtu = export::fields_vtu(
-                        sim.scene(),
-                        |p| sim.displacement_at(p),
-                        |p| sim.stress_at(p),
-                    );
-                    file(
-                        &format!("{stem}.vtu"),
-                        ("VTK unstructured grid", "vtu"),
-                        vtu.as_bytes(),
-                    )
-                }
+            Export::Fields => match self.runner.fields_vtu() {
+                Ok(vtu) => file(
+                    &format!("{stem}.vtu"),
+                    ("VTK unstructured grid", "vtu"),
+                    vtu.as_bytes(),
+                ),
+                Err(e) => Err(e),
             },
             Export::Race => match &self.race {
                 None => Err("run Compare solvers before exporting the race".to_owned()),
@@ -779,32 +746,4 @@ fn file_stem(scene: &SceneFile) -> String {
     } else {
         stem
     }
-}
-
-/// Whether `cmd` may read or change the simulation (not only what is
-/// shown of it): the growth thread then gives it back first.
-fn touches_simulation(cmd: &Command) -> bool {
-    !matches!(
-        cmd,
-        Command::Replay(_)
-            | Command::SelectTip(_)
-            | Command::DismissMessage
-            | Command::Refuse(_)
-            | Command::CancelTypedPath
-            | Command::DropWaiting
-            | Command::SetAccelerateGrowth(_)
-            | Command::CompareSolvers { .. }
-            | Command::CancelRace
-            | Command::RunStudy(_)
-            | Command::CancelStudy
-            | Command::Export(
-                Export::CrackPaths
-                    | Export::History
-                    | Export::CanvasPng
-                    | Export::Plot { .. }
-                    | Export::Race
-                    | Export::Study
-                    | Export::StudyTable
-            )
-    )
 }

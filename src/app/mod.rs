@@ -33,8 +33,9 @@ use crate::panels;
 use crate::plots::plot_tab::PlotTab;
 use crate::results::field::{FieldKey, FieldKind};
 use crate::run::RunMode;
-use crate::run::runner::{FieldTask, Runner};
-use crate::run::task::{Progress, Task};
+use crate::run::link::Link;
+use crate::run::runner::Runner;
+use crate::run::task::Task;
 use crate::run::timer::RunTimer;
 use crate::state::command::Command;
 use crate::state::edit::Editor;
@@ -101,9 +102,11 @@ pub struct Options {
     /// Time the command line's run (`--time-run`): when it ends, print its
     /// wall time and frame times (stderr) and close the window.
     pub time_run: bool,
-    /// Natively, growth runs on a thread of its own (false: in frame
-    /// slices, as in the browser; for tests of the sliced run).
-    pub growth_thread: bool,
+    /// The simulation's host works on a thread of its own, natively (the
+    /// app's launch); false: in-process, advanced in the frames (the UI
+    /// tests, which call the host's handler in-process, and the browser's
+    /// page).
+    pub host_thread: bool,
     /// The plot tab shown whatever runs (command line `--plot`, for
     /// screenshots); the user can still pick another.
     pub plot: Option<PlotTab>,
@@ -137,8 +140,7 @@ impl Default for Options {
             start_run: None,
             file_dialogs: true,
             time_run: false,
-            // a browser has no threads
-            growth_thread: !crate::files::io::IN_BROWSER,
+            host_thread: false,
             plot: None,
         }
     }
@@ -242,8 +244,12 @@ impl WorkbenchApp {
         let scene = options.scene.clone().unwrap_or_else(scenes::default_scene);
         let plot_tab = options.plot.unwrap_or_else(|| PlotTab::fitting(&scene));
         let opened_scene = scene.clone();
-        let mut runner = Runner::default();
-        runner.set_growth_thread(options.growth_thread);
+        let link = if options.host_thread {
+            Link::thread()
+        } else {
+            Link::in_process()
+        };
+        let mut runner = Runner::new(link);
         let message = runner.invalidate(&scene).err().map(Message::Error);
         Self {
             scene_source: options.scene_source.clone(),
@@ -332,6 +338,8 @@ impl WorkbenchApp {
             start_run: run,
             time_run,
             plot,
+            // a browser's page has no threads
+            host_thread: !crate::files::io::IN_BROWSER,
             ..Options::default()
         });
         app.layout = Layout::new(saved.layout);
@@ -468,7 +476,7 @@ impl WorkbenchApp {
     }
     /// Fraction of the field being sampled, if one is.
     pub fn field_progress(&self) -> Option<f32> {
-        self.runner.field().progress()
+        self.runner.field_progress()
     }
     /// The solver race, running or finished.
     pub fn race(&self) -> Option<&Race> {
@@ -534,8 +542,8 @@ impl WorkbenchApp {
     /// that the file reopens and grows the identical next step), else the
     /// edited scene.
     pub fn scene_file(&self) -> Result<String, String> {
-        let scene = match self.runner.simulation() {
-            Some(sim) if !self.runner.is_stale() => sim.scene(),
+        let scene = match self.runner.scene() {
+            Some(simulated) if !self.runner.is_stale() => simulated,
             _ => &self.scene,
         };
         scene.to_json().map_err(|e| e.to_string())
@@ -579,9 +587,7 @@ impl WorkbenchApp {
     /// (`None` without one): 0 right after an edit that kept the
     /// discretisation (`Simulation::with_scene`).
     pub fn points_to_integrate(&self) -> Option<usize> {
-        self.runner
-            .simulation()
-            .map(|s| s.xfem().points_to_integrate())
+        self.runner.points_to_integrate()
     }
     /// The relaxation status shown, if any.
     pub fn relax_status(&self) -> Option<cdca::RelaxStatus> {
@@ -704,18 +710,16 @@ impl WorkbenchApp {
             }
         }
         self.refresh_tip_curve();
-        // natively the growth thread repaints the UI when it has something
+        // natively the host thread repaints the UI when it has something
         // to show (and the field comes with it)
-        let on_thread = self.runner.grows_on_thread(ctx);
+        self.want_field();
+        let on_thread = self.runner.works_away(ctx);
         // in a browser, a job working between frames repaints when due
         let away = on_thread || (self.works_between_frames && self.running_job().is_some());
         let busy = (self.running_job().is_some() && !away)
             || self.queued.is_some()
             || self.waiting.is_some()
-            || (!away
-                && self
-                    .field_key()
-                    .is_some_and(|k| !self.runner.field().is_current(&k)));
+            || (!away && !self.runner.field_done());
         if busy || !self.commands.is_empty() {
             ctx.request_repaint();
         } else if on_thread {
@@ -763,25 +767,22 @@ impl WorkbenchApp {
         }
     }
 
-    /// [`Self::run_tasks`]'s work until `deadline`.
+    /// [`Self::run_tasks`]'s work until `deadline`: the host's (in-process,
+    /// the field first, then its run; on a thread, its posts), then the
+    /// race's or the study's, once the field shown is complete.
     fn advance_tasks(&mut self, deadline: Instant) {
-        let key = self.field_key();
-        let mut field = FieldTask::new(&mut self.runner, key);
-        if field.advance(deadline) == Ok(Progress::Finished) {
-            if let Some(Err(e)) = self.job_task().map(|t| t.advance(deadline)) {
-                self.message = Some(Message::Error(e));
-            }
-            if self.runner.field_due_now() {
-                let key = self.field_key();
-                let _ = FieldTask::new(&mut self.runner, key).advance(deadline);
-            }
+        self.want_field();
+        if self.runner.advance(deadline)
+            && let Some(Err(e)) = self.job_task().map(|t| t.advance(deadline))
+        {
+            self.message = Some(Message::Error(e));
         }
     }
 
-    /// The task of the job holding the slot, if one runs.
+    /// The task of the race or the study holding the slot, if one runs.
     fn job_task(&mut self) -> Option<&mut dyn Task> {
         match self.running_job()? {
-            Job::Solve | Job::Growth => Some(&mut self.runner),
+            Job::Solve | Job::Growth => None,
             Job::Race => self.race.as_mut().map(|r| r as &mut dyn Task),
             Job::Study => match self.file_study.as_mut().filter(|s| !s.finished()) {
                 Some(s) => Some(s as &mut dyn Task),
@@ -812,33 +813,33 @@ impl WorkbenchApp {
         }
     }
 
-    /// The field the canvas wants, if any: the current solution or
-    /// iterate, coarse (one sample per element) while a run goes on and at
-    /// the chosen resolution when it stops.
-    fn field_key(&mut self) -> Option<FieldKey> {
-        let version = self.runner.field_version();
+    /// Tells the host the field the canvas wants, if any: the current
+    /// solution or iterate, coarse (one sample per element) while a run
+    /// goes on and at the chosen resolution when it stops. The host
+    /// samples it whenever the state has one (natively, on its thread, the
+    /// field of each step's load whatever the view shows now).
+    fn want_field(&mut self) {
         // coarse during a drag too: its solves follow the pointer
         let running = self.runner.is_running() || self.dragging;
         let s = &self.settings;
         let wanted = s.field != FieldKind::None || s.deformed;
-        let scene = self.runner.scene()?;
+        let Some(scene) = self.runner.scene() else {
+            return;
+        };
         let k = if running {
             1
         } else {
             s.samples_per_cell.clamp(1, 4)
         };
         let key = wanted.then(|| FieldKey {
-            version,
+            version: 0,
             cols: scene.mesh.nx * k,
             rows: scene.mesh.ny * k,
             width: scene.specimen.width,
             height: scene.specimen.height,
             with_displacement: s.deformed || s.field == FieldKind::Displacement,
         });
-        // natively the growth thread samples the field of each step's load
-        // whatever the view shows now
         self.runner.want_field(key);
-        key.filter(|_| self.runner.view().has_field())
     }
 
     /// The inspected tip's σ_θθ / τ_rθ curve, for the current solution.
@@ -895,7 +896,7 @@ impl WorkbenchApp {
         let run = RunStatus {
             mode: self.runner.mode(),
             stale: self.runner.is_stale(),
-            field_progress: self.runner.field().progress(),
+            field_progress: self.runner.field_progress(),
             last_solve_seconds: self.runner.last_solve_seconds(),
             last_build_seconds: self.runner.last_build_seconds(),
             pace: self.runner.pace(),
@@ -1256,7 +1257,7 @@ impl WorkbenchApp {
 
 impl WorkbenchApp {
     /// While the growth thread runs and no input comes, a frame waits
-    /// until [`CALM_FRAME`](crate::run::grower::CALM_FRAME) after the last one
+    /// until [`CALM_FRAME`](crate::run::link::CALM_FRAME) after the last one
     /// began. The app asks for 10
     /// frames a second then, but egui asks for one or two more after each
     /// update, while a grid's columns or a scroll bar settle to what it
@@ -1268,9 +1269,9 @@ impl WorkbenchApp {
         let quiet = ctx.input(|i| i.events.is_empty() && !i.pointer.is_moving());
         if let Some(last) = self.last_frame
             && quiet
-            && self.runner.grows_on_thread(ctx)
+            && self.runner.works_away(ctx)
         {
-            crate::run::grower::wait_for_calm(last);
+            crate::run::link::wait_for_calm(last);
         }
         self.last_frame = Some(Instant::now());
     }

@@ -317,7 +317,7 @@ fn pace_ui(ui: &mut Ui, v: &AppView, cmds: &mut Vec<Command>) {
     if iterative {
         ui.weak(format!(
             "Growth solves to |r|/|f| ≤ {:.0e} (K_I, K_II within 1e-6 of the direct solver on the default scene), warm-started from the last state.",
-            crate::run::runner::GROWTH_TOLERANCE
+            crate::run::host::GROWTH_TOLERANCE
         ));
     }
 }

@@ -238,22 +238,8 @@ impl FieldSampler {
         self.building = None;
     }
 
-    /// The field `key` of `sim`'s current iterate, sampled whole (on the
-    /// growth thread, which owns the simulation).
-    pub fn sampled(sim: &Simulation, key: FieldKey) -> FieldSamples {
-        let mut s = Self::default();
-        let far = Instant::now() + web_time::Duration::from_hours(1);
-        loop {
-            if s.advance(sim, key, far)
-                && let Some(field) = s.current.take()
-            {
-                return field;
-            }
-        }
-    }
-
-    /// Shows `field`, sampled elsewhere (the growth thread) or before (a
-    /// run brought back by Undo); a field being built is dropped.
+    /// Shows `field`, sampled elsewhere (the host) or before (a run
+    /// brought back by Undo); a field being built is dropped.
     pub fn show(&mut self, field: FieldSamples) {
         self.current = Some(field);
         self.building = None;

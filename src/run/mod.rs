@@ -1,22 +1,25 @@
-//! **How work runs**: the runner's simulation and its runs, advanced in
-//! slices within a frame's deadline or, natively, on a growth thread of
-//! its own. Uses `results` (what a run leaves: view, field, replay) and
+//! **How work runs**: the host's simulation and its runs, advanced in
+//! slices, in the UI's frames or on a thread of its own, behind one run
+//! protocol. Uses `results` (what a run leaves: view, field, replay) and
 //! nothing above it.
 //!
 //! - `task`: long work done a slice at a time (the `Task` trait);
-//! - `pacer`: sizes solver calls to the frame's deadline;
-//! - `runner`: the simulation, its view and replay, and the runs on it;
-//! - `grower`: growth on a thread of its own (native);
+//! - `pacer`: sizes solver calls to a slice's deadline;
+//! - `protocol`: the requests the UI sends and the posts the host sends back;
+//! - `host`: the simulation, its view and field, and the runs on it;
+//! - `link`: how requests and posts travel (in-process, or a thread);
+//! - `runner`: the UI's side: sends requests, keeps what the host posts;
 //! - `timer`: times a run started from the command line;
 //! - this file: the runs themselves (`RunMode`, `Run`).
 //!
-//! The runs of the runner's simulation, as tasks advanced within a frame
-//! deadline in calls sized by the [`Pacer`]: relaxation to convergence,
-//! and growth, which ends with the solve of the final cracks at the last
-//! step's load factor.
+//! The runs of the host's simulation, advanced until a deadline in calls
+//! sized by the [`Pacer`]: relaxation to convergence, and growth, which
+//! ends with the solve of the final cracks at the last step's load factor.
 
-pub mod grower;
+pub mod host;
+pub mod link;
 pub mod pacer;
+pub mod protocol;
 pub mod runner;
 pub mod task;
 pub mod timer;

@@ -26,8 +26,8 @@ use cdca::report::{GrownTip, IntactRockReport, NucleatedCrack, Outcome};
 use cdca::{Scene, Simulation};
 use web_time::Instant;
 
+use crate::run::host::growth_solver;
 use crate::run::pacer::Pacer;
-use crate::run::runner::growth_solver;
 use crate::run::task::{Progress, Task};
 
 /// Parameters offered in the Study tab (any numeric scene path works).
@@ -200,7 +200,7 @@ impl Study {
             .with_param(&self.path, value)
             .and_then(|s| s.edit(|f| f.solver = growth_solver(&f.solver, accelerate)))
             .map_err(|e| e.to_string())?;
-        crate::run::runner::interactive_mesh(&scene)?;
+        crate::run::host::interactive_mesh(&scene)?;
         Simulation::new(scene).map_err(|e| e.to_string())
     }
 

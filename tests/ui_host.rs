@@ -1,0 +1,62 @@
+//! The run protocol (issue 63): the simulation's host answers the same on
+//! a thread of its own as in-process, and the UI's thread, whose host
+//! works elsewhere, makes no call of the host (no solver work) through a
+//! whole run. They drive the solver: run them with `--release`.
+
+use cdca_workbench::{Options, RunMode, WorkbenchApp, host_calls_on_this_thread};
+use egui_kittest::Harness;
+
+#[path = "support/harness.rs"]
+mod support;
+use support::{grow, harness, open_bundled};
+
+/// Opens the stepped pair, runs growth to its end, and returns each step's
+/// load factor.
+fn grown(h: &mut Harness<'_, WorkbenchApp>) -> Vec<f64> {
+    h.run_steps(2);
+    open_bundled(h, "specimen_two_flaws_stepped.json");
+    grow(h, "Run growth");
+    assert_eq!(h.state().run_mode(), RunMode::Paused);
+    h.state()
+        .growth_history()
+        .iter()
+        .map(|s| s.load_factor)
+        .collect()
+}
+
+/// The stepped pair's Run growth with the host on its own thread and
+/// in-process: the same steps at the same λ (to 1e-12, the bits of the
+/// same run sliced differently), and no host call on the UI's thread
+/// when the host has a thread, from the first frame to the run's end.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn the_host_thread_grows_what_the_frames_grow_and_the_ui_thread_solves_nothing() {
+    let calls = host_calls_on_this_thread();
+    let mut away = harness(Options {
+        host_thread: true,
+        ..Options::default()
+    });
+    let on_thread = grown(&mut away);
+    assert_eq!(
+        host_calls_on_this_thread(),
+        calls,
+        "the UI thread made no call of the host"
+    );
+    let mut frames = harness(Options::default());
+    let in_process = grown(&mut frames);
+    assert!(
+        host_calls_on_this_thread() > calls,
+        "in-process, the frames call the host (the count counts)"
+    );
+    assert!(on_thread.len() > 5, "{} steps", on_thread.len());
+    assert_eq!(on_thread.len(), in_process.len(), "the same steps");
+    for (step, (a, b)) in on_thread.iter().zip(&in_process).enumerate() {
+        assert!(
+            (a - b).abs() <= 1e-12 * b.abs(),
+            "step {step}: λ {a} and {b}"
+        );
+    }
+}

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the workbench for the browser into dist/ (a static site: index.html,
-# cdca-workbench.js, cdca-workbench_bg.wasm) on a Debian 12 machine without
+# worker.js, cdca-workbench.js, cdca-workbench_bg.wasm) on a Debian 12 machine without
 # rustup's wasm target, installing what it needs:
 #   - Debian's rustc-web (a rustc with the WebAssembly backend), the matching
 #     std sources (rust-web-src) and wasm-ld (lld-22); std is built from
@@ -8,7 +8,8 @@
 #   - wasm-bindgen-cli at the version Cargo.lock pins (cargo install);
 #   - binaryen's wasm-opt from npm (scripts/wasm-opt, run on node; Debian's
 #     binaryen 108 produces output Chromium rejects), which shrinks the
-#     bundle by 7% (docs/browser.md).
+#     bundle by 7% (docs/browser.md), and terser, which minifies the
+#     bindings.
 #
 # With rustup's wasm32 target, `trunk build --release` does the same (see the
 # docs/browser.md), and so does `--rustup`: the wasm build with rustup's
@@ -101,11 +102,14 @@ wasm-bindgen --target web --no-typescript --remove-name-section \
 loader="<script type=\"module\">import init from \"./$app.js\"; init().catch((e) => window.cdcaLoadFailed(e));</script>"
 sed -e '/data-trunk/d' -e "s#<!-- build-web.sh: loader -->#$loader#" index.html >dist/index.html
 grep -q "import init" dist/index.html || { echo "index.html lacks the loader marker" >&2; exit 1; }
+# The solver's Web Worker (src/run/worker.rs): the same module, whose main
+# finds no window and serves the page's requests.
+cp worker.js dist/worker.js
 
 # Binaryen's size optimisation on the bound module (the features are what
 # rustc's wasm32 target emits, with SIMD). Measured: 7% smaller, Run
 # growth no slower.
-if [ ! -x scripts/wasm-opt/node_modules/.bin/wasm-opt ]; then
+if [ ! -x scripts/wasm-opt/node_modules/.bin/wasm-opt ] || [ ! -x scripts/wasm-opt/node_modules/.bin/terser ]; then
     step "npm ci (binaryen)"
     (cd scripts/wasm-opt && npm ci --no-audit --no-fund)
 fi
@@ -115,9 +119,18 @@ scripts/wasm-opt/node_modules/.bin/wasm-opt -Os \
     --enable-mutable-globals --enable-reference-types --enable-multivalue --enable-simd \
     "dist/${app}_bg.wasm" -o "dist/${app}_bg.wasm"
 
+# The bindings minified (terser, from the same npm package): 85 KB → 40 KB,
+# which keeps the page's download (the module, its bindings, index.html and
+# worker.js) within 4.5 MB with the solver's Web Worker protocol.
+step "terser"
+scripts/wasm-opt/node_modules/.bin/terser "dist/$app.js" --module --compress --mangle \
+    -o "dist/$app.min.js"
+mv "dist/$app.min.js" "dist/$app.js"
+
 wasm_bytes=$(stat -c %s "dist/${app}_bg.wasm")
+page_bytes=$(cat dist/* | wc -c)
 gz_bytes=$(gzip -9 -c "dist/${app}_bg.wasm" | wc -c)
 step "done"
-awk -v a="$app" -v w="$wasm_bytes" -v g="$gz_bytes" \
-    'BEGIN { printf "dist/%s_bg.wasm: %.2f MiB (%.2f MiB gzipped)\n", a, w / 1048576, g / 1048576 }'
+awk -v a="$app" -v w="$wasm_bytes" -v g="$gz_bytes" -v p="$page_bytes" \
+    'BEGIN { printf "dist/%s_bg.wasm: %.2f MiB (%.2f MiB gzipped); the page in all: %d bytes\n", a, w / 1048576, g / 1048576, p }'
 echo "serve with: python3 -m http.server -b 127.0.0.1 -d dist 8080"

@@ -7,20 +7,25 @@
 # (tests/web/smoke.mjs). Then, in a fresh page, it presses Run growth on the
 # bundled stepped pair and prints the run's time and the browser's frame
 # times until it ends ("browser frame times during Run growth: ...";
-# CDCA_RUN_GROWTH_MS caps the duration, default 60 s, 0 skips it). Last,
+# CDCA_RUN_GROWTH_MS caps the duration, default 60 s, 0 skips it): once
+# with the solver on the page (?cdca_no_worker, the fallback) and once on
+# its Web Worker, which must grow the same steps at the same λ as each
+# other and as `cdca grow` (when target/release/cdca is built). Last,
 # the layout at 1280 × 800, 1024 × 640 and 390 × 844, loaded and resized,
 # and after Run growth (tests/web/layout.mjs, screenshots web-layout-*.png
 # next to SCREENSHOT); and a link copied after a run, which opens the scene
 # as drawn, taken out of the address by Reset (tests/web/link.mjs).
 #
-#   bash scripts/test-web.sh [--no-build | --rustup] [--first-frame [STARTS]] [SCREENSHOT]
+#   bash scripts/test-web.sh [--no-build | --rustup] [--first-frame [STARTS] [--old DIR]] [SCREENSHOT]
 #       SCREENSHOT defaults to target-web/web-screenshot.png; the app's
 #       solve and frame timings, and the Run growth frame times, go next
 #       to it (web-timings.txt). --rustup builds with rustup's wasm target
 #       (scripts/build-web.sh --rustup). --first-frame: instead of the
 #       tests, times the first frame and the first field over STARTS
 #       starts (default 10) per scene (tests/web/first_frame.mjs; writes
-#       web-first-frame.csv next to SCREENSHOT). Run on an idle machine.
+#       web-first-frame.csv next to SCREENSHOT); with --old DIR, the
+#       bundle in DIR (an older dist/) too, their starts alternated. Run on
+#       an idle machine.
 #
 # Installs what it needs: chromium (apt-get), playwright-core (npm ci).
 set -euo pipefail
@@ -28,10 +33,15 @@ cd "$(dirname "$0")/.."
 
 build=(bash scripts/build-web.sh)
 first_frame=0
+old_dist=
 while (($#)); do
     case "$1" in
         --no-build) build=() ;;
         --rustup) build+=(--rustup) ;;
+        --old)
+            old_dist=$2
+            shift
+            ;;
         --first-frame)
             first_frame=10
             if [[ "${2:-}" =~ ^[0-9]+$ ]]; then
@@ -89,10 +99,30 @@ for _ in range(100):
 PY
 
 if ((first_frame)); then
+    if [ -n "$old_dist" ]; then
+        old_port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+        python3 -m http.server -b 127.0.0.1 -d "$old_dist" "$old_port" >/dev/null 2>&1 &
+        old_server=$!
+        trap 'kill "$server" "$old_server" 2>/dev/null || true' EXIT
+        export CDCA_OLD_URL="http://127.0.0.1:$old_port/"
+        sleep 1
+    fi
     step "first frame, $first_frame starts per scene, http://127.0.0.1:$port/"
     node tests/web/first_frame.mjs "http://127.0.0.1:$port/" "$out/web-first-frame.csv" "$first_frame"
     step "done"
     exit
+fi
+# the stepped pair's steps as `cdca grow` grows them natively, for the
+# browser's Run growth to match (issue 63), where the native tool is built
+cdca="${CARGO_TARGET_DIR:-target}/release/cdca"
+if [ -x "$cdca" ] && [ -z "${CDCA_RUN_GROWTH_SCENE:-}" ]; then
+    export CDCA_EXPECT_LOADS="$out/cdca-grow-loads.json"
+    if ! "$cdca" grow assets/scenes/specimen_two_flaws_stepped.json |
+        python3 -c 'import json, sys; print(json.dumps([s["load_factor"] for s in json.load(sys.stdin)["steps"]]))' \
+            >"$CDCA_EXPECT_LOADS"; then
+        echo "cdca grow failed: the browser's steps are checked against each other only" >&2
+        unset CDCA_EXPECT_LOADS
+    fi
 fi
 step "headless Chromium on http://127.0.0.1:$port/"
 node tests/web/smoke.mjs "http://127.0.0.1:$port/" "$screenshot" "$timings"

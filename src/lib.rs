@@ -34,4 +34,6 @@ pub use app::{Options, StartRun, WorkbenchApp};
 pub use plots::plot_tab::PlotTab;
 pub use run::RunMode;
 pub use run::host::host_calls_on_this_thread;
+#[cfg(target_arch = "wasm32")]
+pub use run::worker::serve as serve_worker;
 pub use state::command::Command;

@@ -182,6 +182,7 @@ fn main() -> eframe::Result {
                 launch.run,
                 launch.time_run,
                 launch.plot,
+                true,
             )))
         }),
     )
@@ -197,6 +198,15 @@ fn main() {
 
     if eframe::WebLogger::init(log::LevelFilter::Info).is_err() {
         web_sys::console::warn_1(&"no console logger".into());
+    }
+    // the same module in the solver's Web Worker (`worker.js`): no window,
+    // no app; the worker serves the page's requests
+    if web_sys::window().is_none() {
+        std::panic::set_hook(Box::new(|info| {
+            log::error!("the solver's worker stopped: {info}")
+        }));
+        cdca_workbench::serve_worker();
+        return;
     }
     let runner = eframe::WebRunner::new();
     // After `WebRunner::new`, so eframe's hook (which logs to the console)

@@ -553,14 +553,12 @@ impl WorkbenchApp {
                 ("CSV", "csv"),
                 self.history_csv().as_bytes(),
             ),
-            Export::Fields => match self.runner.fields_vtu() {
-                Ok(vtu) => file(
-                    &format!("{stem}.vtu"),
-                    ("VTK unstructured grid", "vtu"),
-                    vtu.as_bytes(),
-                ),
-                Err(e) => Err(e),
-            },
+            Export::Fields => {
+                // the host writes them; saved when its answer comes
+                // (`save_fields`)
+                self.runner.request_fields();
+                return;
+            }
             Export::Race => match &self.race {
                 None => Err("run Compare solvers before exporting the race".to_owned()),
                 Some(race) => file(
@@ -618,6 +616,23 @@ impl WorkbenchApp {
                 self.save_bytes(&name, filter, bytes, what == Export::Scene);
             }
             Err(e) => self.message = Some(Message::Error(e)),
+        }
+    }
+
+    /// Saves the fields the host wrote for Export fields, once they come.
+    pub(crate) fn save_fields(&mut self) {
+        match self.runner.take_fields() {
+            Some(Ok(vtu)) => {
+                let name = format!("{}.vtu", self.file_stem());
+                self.save_bytes(
+                    &name,
+                    ("VTK unstructured grid", "vtu"),
+                    vtu.into_bytes(),
+                    false,
+                );
+            }
+            Some(Err(e)) => self.message = Some(Message::Error(e)),
+            None => {}
         }
     }
 

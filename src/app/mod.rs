@@ -102,10 +102,11 @@ pub struct Options {
     /// Time the command line's run (`--time-run`): when it ends, print its
     /// wall time and frame times (stderr) and close the window.
     pub time_run: bool,
-    /// The simulation's host works on a thread of its own, natively (the
-    /// app's launch); false: in-process, advanced in the frames (the UI
-    /// tests, which call the host's handler in-process, and the browser's
-    /// page).
+    /// The simulation's host works away from the UI's thread: on a thread
+    /// of its own natively, in a Web Worker in a browser (the app's
+    /// launch); false: in-process, advanced in the frames (the UI tests,
+    /// which call the host's handler in-process; a page asked for
+    /// `?cdca_no_worker`).
     pub host_thread: bool,
     /// The plot tab shown whatever runs (command line `--plot`, for
     /// screenshots); the user can still pick another.
@@ -244,13 +245,26 @@ impl WorkbenchApp {
         let scene = options.scene.clone().unwrap_or_else(scenes::default_scene);
         let plot_tab = options.plot.unwrap_or_else(|| PlotTab::fitting(&scene));
         let opened_scene = scene.clone();
-        let link = if options.host_thread {
-            Link::thread()
+        // where no worker can start, the host works in the page's frames
+        let (link, no_worker) = if options.host_thread {
+            match Link::away() {
+                Ok(link) => (link, None),
+                Err(e) => (Link::in_process(), Some(e)),
+            }
         } else {
-            Link::in_process()
+            (Link::in_process(), None)
         };
         let mut runner = Runner::new(link);
-        let message = runner.invalidate(&scene).err().map(Message::Error);
+        let message = runner
+            .invalidate(&scene)
+            .err()
+            .or(no_worker.map(|e| {
+                format!(
+                    "The solver runs on the page (the page could not start a Web Worker: {e}): \
+                     the page may stutter while it works."
+                )
+            }))
+            .map(Message::Error);
         Self {
             scene_source: options.scene_source.clone(),
             scene,
@@ -300,20 +314,23 @@ impl WorkbenchApp {
         }
     }
 
-    /// The native and web entry: restores the last scene and view settings.
-    pub fn from_creation_context(cc: &eframe::CreationContext<'_>) -> Self {
-        Self::launch(cc, None, None, false, None)
+    /// The web entry: restores the last scene and view settings; the host
+    /// in a Web Worker with `host_thread` (else on the page).
+    pub fn from_creation_context(cc: &eframe::CreationContext<'_>, host_thread: bool) -> Self {
+        Self::launch(cc, None, None, false, None, host_thread)
     }
 
     /// The entry from the command line: opens `scene` (source, scene)
     /// instead of the saved one when given, restores the view settings, and
-    /// starts `run` after the first solve.
+    /// starts `run` after the first solve; the host away from the UI's
+    /// thread with `host_thread` ([`Options::host_thread`]).
     pub fn launch(
         cc: &eframe::CreationContext<'_>,
         scene: Option<(String, SceneFile)>,
         run: Option<StartRun>,
         time_run: bool,
         plot: Option<PlotTab>,
+        host_thread: bool,
     ) -> Self {
         cc.egui_ctx.set_fonts(fonts());
         let saved = Persisted::load(cc.storage);
@@ -338,8 +355,7 @@ impl WorkbenchApp {
             start_run: run,
             time_run,
             plot,
-            // a browser's page has no threads
-            host_thread: !crate::files::io::IN_BROWSER,
+            host_thread,
             ..Options::default()
         });
         app.layout = Layout::new(saved.layout);
@@ -715,7 +731,7 @@ impl WorkbenchApp {
         self.want_field();
         let on_thread = self.runner.works_away(ctx);
         // in a browser, a job working between frames repaints when due
-        let away = on_thread || (self.works_between_frames && self.running_job().is_some());
+        let away = on_thread || (self.works_between_frames && self.job_on_page());
         let busy = (self.running_job().is_some() && !away)
             || self.queued.is_some()
             || self.waiting.is_some()
@@ -737,6 +753,7 @@ impl WorkbenchApp {
         if let Some(e) = self.runner.take_error() {
             self.message = Some(Message::Error(e));
         }
+        self.save_fields();
         let start = Instant::now();
         let rest = Duration::from_secs_f64(self.frame_stats.last_besides_solver());
         let deadline = start + solver_budget(rest);
@@ -761,7 +778,7 @@ impl WorkbenchApp {
     /// do not depend on where the slices fall. Nothing without a running
     /// job.
     pub fn advance_job_until(&mut self, deadline: Instant) {
-        if self.running_job().is_some() {
+        if self.job_on_page() {
             self.runner.leave_long_calls(false);
             self.advance_tasks(deadline);
         }
@@ -776,6 +793,16 @@ impl WorkbenchApp {
             && let Some(Err(e)) = self.job_task().map(|t| t.advance(deadline))
         {
             self.message = Some(Message::Error(e));
+        }
+    }
+
+    /// A job runs whose work is done on the UI's thread: the race, a study,
+    /// or the host's run when the host is in-process.
+    pub(crate) fn job_on_page(&self) -> bool {
+        match self.running_job() {
+            Some(Job::Solve | Job::Growth) => !self.runner.is_away(),
+            Some(Job::Race | Job::Study) => true,
+            None => false,
         }
     }
 

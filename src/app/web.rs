@@ -68,7 +68,10 @@ impl WebApp {
             cc.egui_ctx.enable_accesskit();
             cc.egui_ctx.add_plugin(WidgetsToPage);
         }
-        let mut app = WorkbenchApp::from_creation_context(cc);
+        // `?cdca_no_worker`: the host on the page, as where no Web Worker
+        // can start (the fallback, tested to the same answer)
+        let mut app =
+            WorkbenchApp::from_creation_context(cc, !page_query().contains("cdca_no_worker"));
         // a shared link (`#scene=…`, src/files/link.rs) opens its scene, solved
         let hash = web_sys::window()
             .and_then(|w| w.location().hash().ok())
@@ -83,6 +86,8 @@ impl WebApp {
         if page_query().contains("cdca_frames_only") {
             between.disable();
         }
+        // jobs on the page (the race, a study; the host's runs without a
+        // worker) also work between frames
         app.borrow_mut().works_between_frames = between.enabled();
         Self {
             between,
@@ -127,8 +132,13 @@ impl WebApp {
         };
         set("sceneName", app.scene().name.as_str().into());
         // Whether the solver runs on a Web Worker, off the page's thread
-        // (issue 63): not yet; it runs on the page, between frames.
-        set("worker", false.into());
+        // (issue 63), and how many requests and slices the page's own host
+        // has handled (none while the worker has the host).
+        set("worker", app.runner.is_away().into());
+        set(
+            "hostCallsOnPage",
+            (crate::run::host::host_calls_on_this_thread() as f64).into(),
+        );
         set("solved", app.is_solved().into());
         set("fieldShown", app.field_is_shown().into());
         // Sub-cells of the shown field with a finite stress (0: nothing
@@ -156,6 +166,16 @@ impl WebApp {
             }),
         );
         set("growthSteps", (app.growth_steps() as f64).into());
+        // each step's load factor, to set beside `cdca grow`'s (issue 63)
+        set(
+            "stepLoads",
+            js_sys::Array::from_iter(
+                app.growth_history()
+                    .iter()
+                    .map(|s| JsValue::from(s.load_factor)),
+            )
+            .into(),
+        );
         set("residualSamples", (app.residual_samples() as f64).into());
         set("runMode", format!("{:?}", app.run_mode()).into());
         let crack_points: usize = app.simulated_cracks().iter().map(Vec::len).sum();
@@ -327,7 +347,7 @@ impl eframe::App for WebApp {
         let mut app = self.app.borrow_mut();
         Self::take_opened_files(&mut app);
         eframe::App::logic(&mut *app, ctx, frame);
-        if app.running_job().is_some() {
+        if app.job_on_page() {
             self.between.start();
         }
     }

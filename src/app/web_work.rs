@@ -1,4 +1,5 @@
-//! The running job's work between frames, in tasks of its own.
+//! A page without the solver's Web Worker: the running job's work between
+//! frames, in tasks of its own.
 //!
 //! In a frame the solver gets what the UI leaves of the app's 15 ms
 //! (`app::solver_budget`), so that no frame is long. But where the browser
@@ -25,13 +26,14 @@
 //! fell from 98–118 ms to 5.6–5.7 ms on that run, 7.8 ms on the default
 //! scene's.
 //!
-//! Why not a Web Worker: the simulation would have to live in the worker
-//! and its view and field be copied to the page after each step, as the
-//! native growth thread's are (`grower.rs`), with a second WebAssembly
-//! instance and a message protocol; sharing memory instead needs wasm
-//! threads (a nightly compiler's `-Zbuild-std` with atomics) and
-//! cross-origin isolation headers a plain static host does not send. On
-//! one thread the job gets what painting leaves, with the code it has.
+//! Only for the jobs that work on the page (`WorkbenchApp::job_on_page`):
+//! Compare solvers and a study, which do not go through the run protocol
+//! yet, and the host's runs where no Web Worker can start (a browser
+//! without module workers, a page opened from a file, a policy forbidding
+//! workers) or where `?cdca_no_worker` asks for it; the browser test runs
+//! Run growth so and on the worker, to the same steps and λ. Otherwise the
+//! host is in its worker (`run::worker`) and the page only paints what it
+//! posts.
 
 use std::cell::{Cell, RefCell};
 use std::rc::{Rc, Weak};
@@ -147,7 +149,7 @@ impl BetweenFrames {
             self.start();
             return;
         };
-        if app.running_job().is_none() {
+        if !app.job_on_page() {
             // the job's last state shows
             self.ctx.request_repaint();
             return;
@@ -158,7 +160,7 @@ impl BetweenFrames {
         stats.tasks += 1;
         stats.worked += start.elapsed().as_secs_f64();
         self.stats.set(stats);
-        let running = app.running_job().is_some();
+        let running = app.job_on_page();
         drop(app);
         if !running || self.last_repaint.get().elapsed() >= REPAINT_EVERY {
             self.last_repaint.set(Instant::now());

@@ -134,7 +134,7 @@ const NAN_SAMPLE: Sample = Sample {
 };
 
 /// What a sampled field was sampled from.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FieldKey {
     pub version: u64,
     pub cols: usize,

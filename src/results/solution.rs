@@ -16,7 +16,7 @@ use egui_plot::PlotPoint;
 const MAX_PLOT_POINTS: usize = 2000;
 
 /// What the UI knows of the solver's state.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct SolutionView {
     /// Bumped every time the solver's state changes; caches key on it.
     pub version: u64,
@@ -41,8 +41,10 @@ pub struct SolutionView {
     pub tips: Vec<TipReport>,
     pub contact: Vec<ContactPointView>,
     /// Residual against sweep number: x = sweep, y = log10(residual).
+    #[serde(with = "plot_points")]
     pub residual_by_sweep: Vec<PlotPoint>,
     /// Residual against wall time: x = seconds, y = log10(residual).
+    #[serde(with = "plot_points")]
     pub residual_by_time: Vec<PlotPoint>,
     /// Number of residual samples before decimation.
     pub residual_samples: usize,
@@ -287,7 +289,7 @@ fn decimate<T>(samples: &[T], f: impl Fn(&T) -> PlotPoint) -> Vec<PlotPoint> {
 }
 
 /// Where the check of a solve for another solution stands.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum SecondStart {
     /// Not run: no Solve yet, or no face closed (nothing to compare).
     #[default]
@@ -296,6 +298,29 @@ pub enum SecondStart {
     Running,
     /// Done (`other_solution` says what it found).
     Done,
+}
+
+/// A plot's points as `(x, y)` pairs (egui_plot's `PlotPoint` has no serde
+/// form), for the run protocol's posts: a y that is not finite (log10 of a
+/// residual of 0) as none, read back as NaN, which the plots leave out.
+mod plot_points {
+    use egui_plot::PlotPoint;
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    pub fn serialize<S: Serializer>(points: &[PlotPoint], s: S) -> Result<S::Ok, S::Error> {
+        let pairs: Vec<(f64, Option<f64>)> = points
+            .iter()
+            .map(|p| (p.x, p.y.is_finite().then_some(p.y)))
+            .collect();
+        pairs.serialize(s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<PlotPoint>, D::Error> {
+        Ok(Vec::<(f64, Option<f64>)>::deserialize(d)?
+            .into_iter()
+            .map(|(x, y)| PlotPoint::new(x, y.unwrap_or(f64::NAN)))
+            .collect())
+    }
 }
 
 #[cfg(test)]

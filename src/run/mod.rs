@@ -7,7 +7,8 @@
 //! - `pacer`: sizes solver calls to a slice's deadline;
 //! - `protocol`: the requests the UI sends and the posts the host sends back;
 //! - `host`: the simulation, its view and field, and the runs on it;
-//! - `link`: how requests and posts travel (in-process, or a thread);
+//! - `link`: how requests and posts travel: in-process, or away
+//!   (`thread` natively, `worker`, a Web Worker, in a browser);
 //! - `runner`: the UI's side: sends requests, keeps what the host posts;
 //! - `timer`: times a run started from the command line;
 //! - this file: the runs themselves (`RunMode`, `Run`).
@@ -22,7 +23,11 @@ pub mod pacer;
 pub mod protocol;
 pub mod runner;
 pub mod task;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod thread;
 pub mod timer;
+#[cfg(target_arch = "wasm32")]
+pub mod worker;
 
 use cdca::scene::SolverKind;
 use cdca::{RelaxStatus, Simulation, SolveError};
@@ -32,7 +37,7 @@ use crate::run::pacer::Pacer;
 use crate::run::task::Progress;
 
 /// What the solver does in the coming frames.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum RunMode {
     #[default]
     Paused,

@@ -53,6 +53,8 @@ pub struct Runner {
     next_kept: u64,
     forgotten: (Sender<u64>, Receiver<u64>),
     error: Option<String>,
+    /// The host's answer to Export fields, until the app saves it.
+    fields: Option<Result<String, String>>,
 }
 
 /// A run kept by Undo ([`Runner::take_run`], [`Runner::restore_run`]):
@@ -109,6 +111,7 @@ impl Runner {
             next_kept: 0,
             forgotten: mpsc::channel(),
             error: None,
+            fields: None,
         }
     }
 
@@ -141,8 +144,14 @@ impl Runner {
     fn take(&mut self, post: Post) {
         match post {
             Post::Shown(shown) => self.show(*shown),
-            // an answer nobody waits for any more
-            Post::Fields(_) => {}
+            Post::Fields(vtu) => self.fields = Some(vtu),
+            Post::Failed(e) => {
+                // nothing runs any more
+                self.shown.mode = RunMode::Paused;
+                self.shown.field_done = true;
+                self.expected_mode = Some(RunMode::Paused);
+                self.error = Some(e);
+            }
         }
     }
 
@@ -259,12 +268,18 @@ impl Runner {
         self.mode() != RunMode::Paused
     }
 
+    /// The host works away from the UI's thread (a thread of its own, a
+    /// Web Worker).
+    pub fn is_away(&self) -> bool {
+        self.link.is_away()
+    }
+
     /// The host works on a thread of its own and has work (a run, a field
     /// to sample): the UI need not repaint but when it posts (it repaints
     /// the UI through `waker`, the app's context).
     pub fn works_away(&mut self, waker: &egui::Context) -> bool {
         self.link.set_waker(waker);
-        self.link.is_away() && (self.is_running() || !self.shown.field_done)
+        self.is_away() && (self.is_running() || !self.shown.field_done)
     }
 
     /// The edited scene differs from the simulated one.
@@ -544,16 +559,15 @@ impl Runner {
         self.ask(Request::SetAccelerateGrowth(on), None);
     }
 
-    /// The fields of the solution as a VTU file (ParaView): the host's
-    /// answer, waited for.
-    pub fn fields_vtu(&mut self) -> Result<String, String> {
-        self.send(Request::ExportFields);
-        while let Some(post) = self.link.wait_post() {
-            match post {
-                Post::Fields(vtu) => return vtu,
-                post @ Post::Shown(_) => self.take(post),
-            }
-        }
-        Err("the solver has stopped".to_owned())
+    /// Asks the host for the fields of the solution as a VTU file
+    /// (ParaView); [`take_fields`](Self::take_fields) has them once they
+    /// come.
+    pub fn request_fields(&mut self) {
+        self.ask(Request::ExportFields, None);
+    }
+
+    /// The host's answer to [`request_fields`](Self::request_fields), once.
+    pub fn take_fields(&mut self) -> Option<Result<String, String>> {
+        self.fields.take()
     }
 }

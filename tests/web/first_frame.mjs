@@ -8,7 +8,11 @@
 // scene, the bundled k = 0.2, μ = 0.5 plate at 120 × 120 with the
 // automaton solver and at 200 × 200 with the direct solver, the two
 // plates opened as shared links (`#scene=…`). Prints a row per scene
-// (median and largest of each) and writes OUT.csv.
+// (median and largest of each) and writes OUT.csv. With CDCA_OLD_URL (an
+// older bundle served beside this one: `scripts/test-web.sh --first-frame
+// N --old DIR`), the two bundles' starts alternate and each scene gets a
+// row per bundle and their medians' differences (issue 63: the solver's
+// worker may cost the first frame and field at most 0.2 s).
 //
 //   node tests/web/first_frame.mjs URL OUT.csv [STARTS]
 import { writeFileSync } from "node:fs";
@@ -35,34 +39,53 @@ const scenes = [
     ["plate 200 × 200, direct", "plate_200_direct", `#${plate("plate_200_direct", 200, "direct")}`],
 ];
 
-const rows = ["scene,start,first_frame_ms,field_ms"];
+// [bundle label, its address]
+const bundles = [["this", url]];
+if (process.env.CDCA_OLD_URL) bundles.push(["old", process.env.CDCA_OLD_URL]);
+const rows = ["bundle,scene,start,first_frame_ms,field_ms"];
 const summary = [];
 const browser = await launch();
 try {
     for (const [scene, id, hash] of scenes) {
-        const frames = [];
-        const fields = [];
+        const times = new Map(bundles.map(([b]) => [b, { frames: [], fields: [] }]));
         for (let i = 1; i <= starts; i++) {
-            const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
-            watch(page, `[${scene} #${i}] `, { quiet: true });
-            try {
-                await open(page, url, hash);
-                await page.waitForFunction(() => window.cdcaState?.firstFieldMs != null, null, {
-                    timeout: START_TIMEOUT_MS,
-                    polling: 50,
-                });
-                const s = await page.evaluate(() => window.cdcaState);
-                frames.push(s.firstFrameMs);
-                fields.push(s.firstFieldMs);
-                rows.push(`${id},${i},${s.firstFrameMs.toFixed(0)},${s.firstFieldMs.toFixed(0)}`);
-                log(`${scene} #${i}: first frame ${s.firstFrameMs.toFixed(0)} ms, field ${s.firstFieldMs.toFixed(0)} ms`);
-            } catch (e) {
-                problems.push(`${scene} #${i}: ${e.message}`);
-            } finally {
-                await page.context().close();
+            for (const [bundle, address] of bundles) {
+                const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+                watch(page, `[${bundle}: ${scene} #${i}] `, { quiet: true });
+                try {
+                    await open(page, address, hash);
+                    await page.waitForFunction(() => window.cdcaState?.firstFieldMs != null, null, {
+                        timeout: START_TIMEOUT_MS,
+                        polling: 50,
+                    });
+                    const s = await page.evaluate(() => window.cdcaState);
+                    times.get(bundle).frames.push(s.firstFrameMs);
+                    times.get(bundle).fields.push(s.firstFieldMs);
+                    rows.push(`${bundle},${id},${i},${s.firstFrameMs.toFixed(0)},${s.firstFieldMs.toFixed(0)}`);
+                    log(
+                        `${bundle}: ${scene} #${i}: first frame ${s.firstFrameMs.toFixed(0)} ms, ` +
+                            `field ${s.firstFieldMs.toFixed(0)} ms`,
+                    );
+                } catch (e) {
+                    problems.push(`${bundle}: ${scene} #${i}: ${e.message}`);
+                } finally {
+                    await page.context().close();
+                }
             }
         }
-        if (frames.length) summary.push([scene, frames.length, medianMax(frames), medianMax(fields)]);
+        for (const [bundle] of bundles) {
+            const { frames, fields } = times.get(bundle);
+            if (frames.length) {
+                const label = bundles.length > 1 ? `${scene}, ${bundle} bundle` : scene;
+                summary.push([label, frames.length, medianMax(frames), medianMax(fields)]);
+            }
+        }
+        if (bundles.length > 1 && summary.length >= 2) {
+            const [a, b] = summary.slice(-2);
+            const d = (x, y) => `${x.median - y.median >= 0 ? "+" : ""}${((x.median - y.median) / 1000).toFixed(2)} s`;
+            log(`${scene}: this bundle against the old: first frame ${d(a[2], b[2])}, first field ${d(a[3], b[3])}`);
+            summary.push([`${scene}: this − old`, "", a[2].median - b[2].median, a[3].median - b[3].median]);
+        }
     }
 } finally {
     await browser.close();
@@ -73,7 +96,11 @@ const s = (ms) => `${(ms / 1000).toFixed(2)} s`;
 console.log("\n| scene | starts | first frame, median | max | first field, median | max |");
 console.log("| --- | --- | --- | --- | --- | --- |");
 for (const [scene, n, f, g] of summary) {
-    console.log(`| ${scene} | ${n} | ${s(f.median)} | ${s(f.max)} | ${s(g.median)} | ${s(g.max)} |`);
+    if (typeof f === "number") {
+        console.log(`| ${scene} | | ${s(f)} | | ${s(g)} | |`);
+    } else {
+        console.log(`| ${scene} | ${n} | ${s(f.median)} | ${s(f.max)} | ${s(g.median)} | ${s(g.max)} |`);
+    }
 }
 if (problems.length) {
     console.error(`\nfirst frame FAILED (${problems.length} problem(s)):`);

@@ -245,11 +245,39 @@ async function sharedLinks() {
     }
 }
 
-// Frame times during Run growth, in a page of its own (see the top).
+// Frame times during Run growth, in a page of its own (see the top): first
+// with the solver on the page (`?cdca_no_worker`: the fallback where no Web
+// Worker can start, and the design before the worker), then on its Web
+// Worker; both must grow the same steps at the same λ (and those of
+// `cdca grow`, when CDCA_EXPECT_LOADS names its steps' λ as a JSON list).
 let frameTimes = null;
 try {
     for (const context of browser.contexts()) await context.close();
-    if (RUN_GROWTH_MS > 0) frameTimes = await runGrowthFrameTimes();
+    if (RUN_GROWTH_MS > 0) {
+        const onPage = await runGrowthFrameTimes("page");
+        const onWorker = await runGrowthFrameTimes("worker");
+        frameTimes = [...onPage.lines, ...onWorker.lines];
+        const expected = process.env.CDCA_EXPECT_LOADS
+            ? JSON.parse(readFileSync(process.env.CDCA_EXPECT_LOADS, "utf8"))
+            : null;
+        const same = (a, b) =>
+            a.length === b.length && a.every((x, i) => Math.abs(x - b[i]) <= 1e-12 * Math.abs(b[i]));
+        const runs = [["the page", onPage.loads], ["the worker", onWorker.loads]];
+        if (expected) runs.push(["cdca grow", expected]);
+        for (const [what, loads] of runs.slice(1)) {
+            if (!same(loads, onPage.loads)) {
+                problems.push(
+                    `run growth: ${what} grew ${loads.length} steps (λ ${loads.join(", ")}), the page ` +
+                        `${onPage.loads.length} (λ ${onPage.loads.join(", ")})`,
+                );
+            }
+        }
+        frameTimes.push(
+            `the same steps and λ (to 1e-12) on the page, on the worker` +
+                (expected ? " and from cdca grow" : "") +
+                `: ${onPage.loads.length} steps, last λ ${onPage.loads.at(-1)}`,
+        );
+    }
 } catch (e) {
     problems.push(`run growth: ${e.message}`);
 } finally {
@@ -264,13 +292,18 @@ function appBudget(cpu) {
     return p95 <= 16 ? `\n  app CPU p95 ${p95} ms: within the 16 ms budget` : `\n  app CPU p95 ${p95} ms: OVER the 16 ms budget`;
 }
 
-async function runGrowthFrameTimes() {
-    const tag = "[run growth] ";
+// `mode`: "worker" (the solver on its Web Worker) or "page" (on the page,
+// `?cdca_no_worker`). Returns the lines to print and each step's λ.
+async function runGrowthFrameTimes(mode) {
+    const tag = `[run growth, ${mode}] `;
     const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
     watch(page, tag);
-    // CDCA_FRAMES_ONLY=1: the solver in the frames only (src/app/web.rs), to
-    // measure what the idle time gains
-    const query = `?cdca_continuous${process.env.CDCA_FRAMES_ONLY === "1" ? "&cdca_frames_only" : ""}`;
+    // CDCA_FRAMES_ONLY=1: on the page, the solver in the frames only
+    // (src/app/web.rs), to measure what the idle time gains
+    const query =
+        "?cdca_continuous" +
+        (mode === "page" ? "&cdca_no_worker" : "") +
+        (mode === "page" && process.env.CDCA_FRAMES_ONLY === "1" ? "&cdca_frames_only" : "");
     await openAt(page, url + query, `#${sceneLink(RUN_GROWTH_SCENE)}`);
     const { state, waitState, click, park } = hooks(page);
     await waitState(
@@ -280,6 +313,9 @@ async function runGrowthFrameTimes() {
     );
     const before = await state();
     log(`${tag}scene "${before.sceneName}", ${before.growthSteps} growth steps`);
+    if (before.worker !== (mode === "worker")) {
+        throw new Error(`${tag}the solver ${before.worker ? "is" : "is not"} on a Web Worker`);
+    }
 
     // The idle page's frame intervals, repainting continuously.
     const idle = await page.evaluate(
@@ -347,11 +383,18 @@ async function runGrowthFrameTimes() {
         },
         { durationMs: RUN_GROWTH_MS },
     );
+    const callsBefore = (await state()).hostCallsOnPage;
     await click("Run growth");
     await park();
     await waitState(() => window.cdcaFrameTimes?.done, "the frame-time sampler stops", RUN_GROWTH_MS + 60_000);
     const rec = await page.evaluate(() => window.cdcaFrameTimes);
     const after = await state();
+    // issue 63: with the worker, the page's thread makes no solver call
+    // (its own host handles no request and advances no slice) in the run
+    const pageCalls = after.hostCallsOnPage - callsBefore;
+    if (mode === "worker" && pageCalls !== 0) {
+        throw new Error(`${tag}the page's thread called the solver ${pageCalls} times during Run growth`);
+    }
     await page.close();
     log(`${tag}sampling stopped: ${rec.why}; state ${JSON.stringify(after)}`);
     if (rec.start < 0) throw new Error(rec.why);
@@ -405,8 +448,8 @@ async function runGrowthFrameTimes() {
             (frozen.length ? `; longest ${longest.join(", ")}` : ""),
         `  app CPU per frame (last report): ${cpu ? cpu.replace(/^.*timing: /, "") : "none"}` +
             appBudget(cpu),
-        // issue 63's decision, reported, not asserted until the solver
-        // runs on a worker (the page's thread runs it today)
+        // issue 63's decision, reported, not asserted: timings on a shared
+        // machine are measurements, not tests
         `  decision (issue 63), continuous repaint in both: idle page p95 ${idleP95.toFixed(1)} ms ` +
             `(${idle.length} frames), during Run growth p95 ${p95.toFixed(1)} ms: ratio ` +
             `${(p95 / idleP95).toFixed(2)} (at most ${FRAME_RATIO_TARGET}: ` +
@@ -415,6 +458,7 @@ async function runGrowthFrameTimes() {
             `${work.total.toFixed(1)} s: ratio ${(t / 1000 / work.total).toFixed(2)} (at most ` +
             `${WALL_RATIO_TARGET}: ${t / 1000 <= WALL_RATIO_TARGET * work.total ? "met" : "NOT met"})`,
         `  the solver on a Web Worker: ${after.worker ? "yes" : "no, on the page's thread"}; ` +
+            `solver calls on the page's thread during the run: ${pageCalls}; ` +
             `machine: ${cpus().length} cores, load ${loadavg().map((l) => l.toFixed(2)).join(" ")}`,
     ];
     if (steps <= 0) throw new Error(`no growth step in ${(t / 1000).toFixed(1)} s: ${summary}`);
@@ -425,7 +469,7 @@ async function runGrowthFrameTimes() {
         );
     }
     details.push(`  every frame's field is a field (peak ≥ 1e-6, p99 ≤ 10 times the load): ${n + 1} frames`);
-    return [summary, ...details];
+    return { lines: [tag + summary, ...details], loads: after.stepLoads ?? [] };
 }
 
 console.log("\n--- timings logged by the app (src/app/web.rs) ---");

@@ -12,7 +12,7 @@ use crate::report::TipReport;
 use crate::scene::SolverKind;
 
 /// A crack-face integration point as the UI shows it.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactPointView {
     /// Index of the crack in the scene's `cracks`.
     pub crack: usize,
@@ -33,7 +33,7 @@ pub struct ContactPointView {
 }
 
 /// σ_θθ and τ_rθ on the circle r0 around one tip (SPEC §8), for plots.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct CriterionCurve {
     /// Angles in the tip frame, degrees.
     pub theta_deg: Vec<f64>,

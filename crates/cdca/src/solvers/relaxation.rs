@@ -21,7 +21,7 @@ use crate::solvers::multigrid::{MultigridParams, Vcycle};
 use crate::solvers::pcg::{Pcg, Ssor};
 
 /// One sample of an iterative solve's progress.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ResidualSample {
     pub iteration: usize,
     /// Wall time since the relaxation started, s.
@@ -31,7 +31,7 @@ pub struct ResidualSample {
 }
 
 /// Progress of a resumable relaxation.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RelaxStatus {
     pub iterations: usize,
     /// Relative residual ‖f − K u‖ / ‖f‖.

@@ -20,7 +20,7 @@ fn rest_allowed(seconds: f64) -> f64 {
 /// time, from bonded faces): the setup, build, contact solve, evaluation
 /// and the second solve add up to the whole within 2% or 5 ms, and the
 /// whole is the solve as its caller timed it, from reading the scene to
-/// the report, within the same. Measured: a rest of about 1 ms in 1.6 s.
+/// the report, within the same. Measured: a rest of 0.5–1.3 ms in 2–3 s.
 #[test]
 fn a_solve_of_many_closed_cracks_reports_where_its_time_went() {
     let started = Instant::now();

@@ -70,9 +70,9 @@ pub struct WorkReport {
     /// solve, s.
     pub evaluate_seconds: f64,
     /// The rest: the λ_cr search's bookkeeping, extending the cracks and
-    /// rebuilding the discretisation; for a solve, its report (the
-    /// intact rock, a free piece), and for `cdca solve` also comparing
-    /// the two solutions and freeing the simulation, s.
+    /// rebuilding the discretisation; for a solve, its report (a free
+    /// piece among it), and for `cdca solve` also comparing the two
+    /// solutions and freeing the simulation, s.
     pub other_seconds: f64,
     /// Reading and checking the scene and building its simulation (cracks,
     /// enrichment, DOFs, faces) before the first solve, s: `cdca solve`'s

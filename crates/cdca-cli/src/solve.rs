@@ -1,9 +1,10 @@
-//! `cdca solve SCENE`: one solve at full load, no growth; prints the
+//! `cdca solve SCENE`: one solve at full load, no growth, and where faces
+//! close the same problem from bonded faces
+//! ([`Simulation::solve_scene`](cdca::Simulation::solve_scene)); prints the
 //! `SolveReport` as JSON.
 
 use std::path::PathBuf;
-
-use cdca::report::OtherSolutionReport;
+use std::time::Instant;
 
 use crate::error::CliError;
 use crate::{output, scene_file};
@@ -15,22 +16,13 @@ pub struct Args {
 }
 
 pub fn run(args: &Args) -> Result<(), CliError> {
+    let started = Instant::now();
     // The scene is validated here, before any solve.
-    let mut sim = scene_file::simulation(&args.scene)?;
-    sim.set_load_factor(1.0);
-    let mut report = sim.solve()?;
-    // where faces close, the same problem from the opposite start: Coulomb
-    // friction need not have one solution
-    if OtherSolutionReport::worth_checking(&report) {
-        let second = sim.bonded_start()?.solve()?;
-        report.other_solution = OtherSolutionReport::between(&report, &second, "bonded");
-    }
+    let sim = scene_file::simulation(&args.scene)?;
+    let intact_rock = sim.scene().growth.intact_rock;
+    let report = sim.solve_scene(started)?;
     output::print_json(&report)?;
-    output::note_intact_rock(
-        "at full load",
-        report.intact_rock.as_ref(),
-        sim.scene().growth.intact_rock,
-    );
+    output::note_intact_rock("at full load", report.intact_rock.as_ref(), intact_rock);
     if let Some(o) = &report.other_solution {
         eprintln!("cdca: note: {}", o.sentence(&report.contact));
     }

@@ -41,9 +41,13 @@ pub struct SolveReport {
 }
 
 /// What a solve, or a growth step with its λ_cr search's trials, cost:
-/// its solves and iterations, and where its wall time went. The seconds
-/// add up to the whole (`seconds` of a growth step; `solver.seconds` and
-/// the build and evaluation around it for a solve).
+/// its solves and iterations, and where its wall time went. The parts
+/// (`setup_seconds`, `build_seconds`, `solve_seconds`, `evaluate_seconds`,
+/// `second_solve_seconds` and `other_seconds`) add up to `seconds`, the
+/// whole: a growth step's `seconds`, a solve's from its start to its
+/// report, and for `cdca solve` (`Simulation::solve_scene`) the command
+/// from reading the scene to its report. The counts are those of the
+/// solve from open faces (a step's: all its solves).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct WorkReport {
     /// Contact solves run to their end (a trial load the search scaled
@@ -66,8 +70,42 @@ pub struct WorkReport {
     /// solve, s.
     pub evaluate_seconds: f64,
     /// The rest: the λ_cr search's bookkeeping, extending the cracks and
-    /// rebuilding the discretisation, s.
+    /// rebuilding the discretisation; for a solve, its report (a free
+    /// piece among it), and for `cdca solve` also comparing the two
+    /// solutions and freeing the simulation, s.
     pub other_seconds: f64,
+    /// Reading and checking the scene and building its simulation (cracks,
+    /// enrichment, DOFs, faces) before the first solve, s: `cdca solve`'s
+    /// only (0 in a growth step, whose rebuilds are `other_seconds`).
+    #[serde(default)]
+    pub setup_seconds: f64,
+    /// The second solve `cdca solve` runs where faces close, from bonded
+    /// faces (see `other_solution`), all of it (its start, build, contact
+    /// solve and evaluation), s; 0 where it does not run.
+    #[serde(default)]
+    pub second_solve_seconds: f64,
+    /// The whole, s: the sum of the parts above.
+    #[serde(default)]
+    pub seconds: f64,
+}
+
+impl WorkReport {
+    /// The parts but `other_seconds` (the rest), s.
+    #[must_use]
+    pub fn measured_seconds(&self) -> f64 {
+        self.setup_seconds
+            + self.build_seconds
+            + self.solve_seconds
+            + self.evaluate_seconds
+            + self.second_solve_seconds
+    }
+
+    /// Closes the account of a whole that took `seconds`: what the
+    /// measured parts leave is the rest (`other_seconds`).
+    pub fn close(&mut self, seconds: f64) {
+        self.seconds = seconds;
+        self.other_seconds = seconds - self.measured_seconds();
+    }
 }
 
 /// Largest difference of a tip's K_I or K_II, over the largest |K| of a
@@ -337,7 +375,9 @@ pub struct SolverReport {
     /// Final relative residual ‖f − K u‖/‖f‖.
     pub residual: f64,
     pub converged: bool,
-    /// Wall time of the whole solve, s.
+    /// Wall time of the solve (from open faces) after its elements'
+    /// integration: the pattern, the contact solve, the evaluation, s.
+    /// `work` has the whole, in parts.
     pub seconds: f64,
     /// Relative residual after each iteration of the last linear solve.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -636,6 +676,9 @@ impl GrowthStepReport {
                 solve_seconds: 0.0,
                 evaluate_seconds: 0.0,
                 other_seconds: 0.0,
+                setup_seconds: 0.0,
+                second_solve_seconds: 0.0,
+                seconds: 0.0,
                 ..self.work.clone()
             },
             ..self.clone()

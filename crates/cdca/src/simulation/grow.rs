@@ -297,8 +297,7 @@ impl Simulation {
         step.crack_length = self.state.cracks.iter().map(Crack::length).sum();
         step.seconds = trials.start.elapsed().as_secs_f64();
         let mut work = std::mem::take(&mut self.scratch.work);
-        work.other_seconds =
-            step.seconds - work.build_seconds - work.solve_seconds - work.evaluate_seconds;
+        work.close(step.seconds);
         step.work = work;
         self.state.history.push(step.clone());
         self.state.scene.set_resume(self.resume(step.step));

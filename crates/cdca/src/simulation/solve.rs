@@ -14,7 +14,8 @@ use crate::fracture::tips::{TipDomains, evaluate_tips};
 use crate::geometry::cracks::{root, split_specimen};
 use crate::geometry::plane::{P2, segment_intersection};
 use crate::report::{
-    ContactReport, FreePieceReport, IntactRockReport, SolveReport, SolverReport, WorkReport,
+    ContactReport, FreePieceReport, IntactRockReport, OtherSolutionReport, SolveReport,
+    SolverReport, WorkReport,
 };
 use crate::scene::SideBc;
 
@@ -24,21 +25,56 @@ impl Simulation {
     /// solve of [`relax`](Self::relax), run to its end. Its `seconds` leave
     /// out the element integration of a new simulation (part of the build);
     /// its `work` splits the whole: the build (that integration, the
-    /// pattern, the tips' domains), the contact solve and the evaluation.
+    /// pattern, the tips' domains), the contact solve, the evaluation (the
+    /// intact rock's too) and the rest (the report).
     pub fn solve(&mut self) -> Result<SolveReport, SolveError> {
+        let clock = Instant::now();
         self.start_relaxation();
         self.scratch.work = WorkReport::default();
-        let clock = Instant::now();
         self.scratch.xfem.integrate(usize::MAX);
         self.scratch.work.build_seconds = clock.elapsed().as_secs_f64();
         let start = Instant::now();
         while !self.relax(usize::MAX)?.finished {}
         let seconds = start.elapsed().as_secs_f64();
-        Ok(SolveReport {
-            intact_rock: self.intact_rock(),
-            work: std::mem::take(&mut self.scratch.work),
+        let rock = Instant::now();
+        let intact_rock = self.intact_rock();
+        self.scratch.work.evaluate_seconds += rock.elapsed().as_secs_f64();
+        let mut report = SolveReport {
+            intact_rock,
             ..self.report(seconds)
-        })
+        };
+        report.work = std::mem::take(&mut self.scratch.work);
+        report.work.close(clock.elapsed().as_secs_f64());
+        Ok(report)
+    }
+
+    /// What `cdca solve` reports: this new simulation's solve at full load
+    /// and, where faces close, the same problem solved again from bonded
+    /// faces ([`bonded_start`](Self::bonded_start), on this simulation's
+    /// own discretisation), whose finding is `other_solution`. `started`
+    /// is when the caller began (reading the scene); the report's `work`
+    /// accounts for all from then to the report, this simulation freed:
+    /// the time until this call is its `setup_seconds`, the second solve
+    /// its `second_solve_seconds`, what no part times its `other_seconds`.
+    pub fn solve_scene(mut self, started: Instant) -> Result<SolveReport, SolveError> {
+        let setup_seconds = started.elapsed().as_secs_f64();
+        self.set_load_factor(1.0);
+        let mut report = self.solve()?;
+        let mut second_solve_seconds = 0.0;
+        // Coulomb friction need not have one solution
+        if OtherSolutionReport::worth_checking(&report) {
+            let clock = Instant::now();
+            let second = self.into_bonded_start()?.solve()?;
+            report.other_solution = OtherSolutionReport::between(&report, &second, "bonded");
+            second_solve_seconds = clock.elapsed().as_secs_f64();
+        } else {
+            drop(self);
+        }
+        let w = &mut report.work;
+        w.setup_seconds = setup_seconds;
+        w.second_solve_seconds = second_solve_seconds;
+        w.close(started.elapsed().as_secs_f64());
+        Ok(report)
     }
 
     /// A new simulation of this one's scene, cracks and load factor, with
@@ -54,19 +90,41 @@ impl Simulation {
     /// [`OtherSolutionReport::between`](crate::report::OtherSolutionReport::between).
     /// Meant for a simulation without growth history (a scene's solve).
     pub fn bonded_start(&self) -> Result<Self, SolveError> {
-        let mut other = Self::from_parts(
+        Self::from_parts(
             self.model.clone(),
             self.state.cracks.clone(),
             self.scratch.xfem.clone(),
             self.scratch.rebuild_points,
-        )?;
-        other.set_load_factor(self.state.lambda);
+        )
+        .map(|s| s.bonded(self.state.lambda))
+    }
+
+    /// [`bonded_start`](Self::bonded_start) from this simulation's own
+    /// discretisation, not a copy of it, where this one is no longer
+    /// needed; its factor goes on as storage for the first factorisation
+    /// (as in [`with_scene`](Self::with_scene)), which then redoes only
+    /// the supernodes whose values changed, the same to the last bit.
+    fn into_bonded_start(self) -> Result<Self, SolveError> {
+        let lambda = self.state.lambda;
+        let Self {
+            model,
+            state,
+            mut scratch,
+        } = self;
+        let factor = scratch.solver.hand_over_factor();
+        Self::from_parts(model, state.cracks, scratch.xfem, scratch.rebuild_points)
+            .map(|s| s.adopt(factor).bonded(lambda))
+    }
+
+    /// This new simulation at `lambda`, its faces bonded (see
+    /// [`bonded_start`](Self::bonded_start)).
+    fn bonded(mut self, lambda: f64) -> Self {
+        self.set_load_factor(lambda);
         // closed by the specimen's width: the first friction limits (μ k_N
         // |g_N| + c_c) lie far above any traction
         let g_n = -self.model.mesh.width;
-        other.scratch.contact_guess = Some(
-            other
-                .state
+        self.scratch.contact_guess = Some(
+            self.state
                 .faces
                 .iter()
                 .map(|f| FaceState {
@@ -76,7 +134,7 @@ impl Simulation {
                 })
                 .collect(),
         );
-        Ok(other)
+        self
     }
 
     /// The states the next contact iteration starts from: the guess left
@@ -293,5 +351,47 @@ impl Simulation {
             centroid: [mid.x, mid.y],
             cracks: bounding,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    /// The solve from bonded faces on the first simulation's own
+    /// discretisation, its factor taken on as storage (what `cdca solve`
+    /// runs), reports what it reports on a copy with a new factor, to the
+    /// last bit (times aside), on the bundled scenes whose faces close.
+    #[test]
+    fn the_bonded_start_solves_the_same_on_its_own_discretisation() {
+        let untimed = |mut r: SolveReport| {
+            r.solver.seconds = 0.0;
+            r.work = WorkReport::default();
+            r
+        };
+        for name in [
+            "specimen_single_flaw",
+            "specimen_two_flaws_stepped",
+            "closed_crack_biaxial",
+            "plate_45_biaxial_k0.2_mu0.5",
+        ] {
+            let path = format!(
+                "{}/../../assets/scenes/{name}.json",
+                env!("CARGO_MANIFEST_DIR")
+            );
+            let text = std::fs::read_to_string(&path).expect("bundled scene");
+            let mut sim = Simulation::new(Scene::from_json(&text).expect("valid")).expect("valid");
+            sim.set_load_factor(1.0);
+            let first = sim.solve().expect("solve");
+            assert!(OtherSolutionReport::worth_checking(&first), "{name}");
+            let copied = sim.bonded_start().expect("valid").solve().expect("solve");
+            let own = sim
+                .into_bonded_start()
+                .expect("valid")
+                .solve()
+                .expect("solve");
+            assert_eq!(untimed(own), untimed(copied), "{name}");
+        }
     }
 }

@@ -369,7 +369,7 @@ impl Simulation {
     /// elements it enriches, a load or the faces' law edited) that redoes
     /// only the supernodes whose values changed, bit for bit as a
     /// factorisation anew (`Factor::reassemble`).
-    fn adopt(mut self, factor: Option<Factor>) -> Self {
+    pub(super) fn adopt(mut self, factor: Option<Factor>) -> Self {
         if let Some(f) = factor {
             self.scratch.solver.adopt_factor(f);
         }

@@ -714,13 +714,14 @@ impl WorkbenchApp {
                 .or_else(|| self.queued.take())
         {
             if self.options.time_run {
-                self.run_timer.start();
+                self.run_timer.start(self.runner.host_seconds());
             }
             self.run_cmd(ctx, cmd);
         }
         if self.run_timer.is_timing() && self.running_job().is_none() && self.queued.is_none() {
             let v = self.runner.view();
-            if let Some(line) = self.run_timer.finish(v.history.len(), v.load_factor) {
+            let host = self.runner.host_seconds();
+            if let Some(line) = self.run_timer.finish(v.history.len(), v.load_factor, host) {
                 eprintln!("{line}");
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);
             }

@@ -139,6 +139,7 @@ impl WebApp {
             "hostCallsOnPage",
             (crate::run::host::host_calls_on_this_thread() as f64).into(),
         );
+        set("hostSeconds", app.runner.host_seconds().into());
         set("solved", app.is_solved().into());
         set("fieldShown", app.field_is_shown().into());
         // Sub-cells of the shown field with a finite stress (0: nothing

@@ -184,6 +184,8 @@ pub struct Host {
     /// The view version whose criterion curves were last posted.
     curves_version: Option<u64>,
     error: Option<String>,
+    /// Time spent handling requests, advancing and making posts, s.
+    busy_seconds: f64,
 }
 
 impl Default for Host {
@@ -218,6 +220,7 @@ impl Default for Host {
             scene_changed: true,
             curves_version: None,
             error: None,
+            busy_seconds: 0.0,
         }
     }
 }
@@ -228,6 +231,13 @@ impl Host {
     /// Handles `request`; the answer to [`Request::ExportFields`] is
     /// returned, every other change shows in the next [`shown`](Self::shown).
     pub fn handle(&mut self, request: Request) -> Option<Post> {
+        let start = Instant::now();
+        let post = self.handle_timed(request);
+        self.busy_seconds += start.elapsed().as_secs_f64();
+        post
+    }
+
+    fn handle_timed(&mut self, request: Request) -> Option<Post> {
         count_call();
         self.handled += 1;
         let result = match request {
@@ -299,6 +309,14 @@ impl Host {
     /// What the UI shows now; what it carries once (a new field, the
     /// scene, an error) is not carried again.
     pub fn shown(&mut self) -> Shown {
+        let start = Instant::now();
+        let mut shown = self.shown_now();
+        self.busy_seconds += start.elapsed().as_secs_f64();
+        shown.host_seconds = self.busy_seconds;
+        shown
+    }
+
+    fn shown_now(&mut self) -> Shown {
         let sim = self.sim.as_ref();
         let solved = self.view.solved;
         Shown {
@@ -343,6 +361,7 @@ impl Host {
             last_solve_elements: self.last_solve_elements,
             last_build_seconds: self.last_build_seconds,
             error: self.error.take(),
+            host_seconds: 0.0,
         }
     }
 
@@ -380,12 +399,14 @@ impl Host {
     /// step's field at once, before its tips move on.
     pub fn advance(&mut self, deadline: Instant) {
         count_call();
+        let start = Instant::now();
         if self.advance_field(deadline) {
             self.advance_run(deadline);
             if self.show_now {
                 self.advance_field(deadline);
             }
         }
+        self.busy_seconds += start.elapsed().as_secs_f64();
     }
 
     // --- the commands ----------------------------------------------------

@@ -124,6 +124,10 @@ pub struct Shown {
     pub last_build_seconds: f64,
     /// An error since the last post (a run that failed, a build).
     pub error: Option<String>,
+    /// The host's own time so far, s: handling requests, advancing its
+    /// runs, making posts (issue 63: a run's wall time against it says how
+    /// long the host waited).
+    pub host_seconds: f64,
 }
 
 /// Requests and posts as a Web Worker's messages: JSON (`float_roundtrip`:
@@ -197,9 +201,7 @@ pub mod wire {
 mod field_without_samples {
     use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-    use web_time::Duration;
-
-use crate::results::field::{FieldKey, FieldSamples};
+    use crate::results::field::{FieldKey, FieldSamples};
 
     #[allow(clippy::ref_option)] // serde's `with` passes `&Option<T>`
     pub fn serialize<S: Serializer>(field: &Option<FieldSamples>, s: S) -> Result<S::Ok, S::Error> {

@@ -292,6 +292,11 @@ impl Runner {
         self.shown.last_solve_seconds
     }
 
+    /// The host's own time so far, s ([`Shown::host_seconds`]).
+    pub fn host_seconds(&self) -> f64 {
+        self.shown.host_seconds
+    }
+
     /// Wall time of the last discretisation build, s.
     pub fn last_build_seconds(&self) -> f64 {
         self.shown.last_build_seconds

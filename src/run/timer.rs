@@ -1,7 +1,8 @@
 //! Times the run the command line started (`cdca-workbench SCENE --run grow
 //! --time-run`): the wall time from the frame that starts it to the frame
 //! it ends in, and the frames meanwhile (CPU time of logic and UI, and the
-//! interval between frames), summed up in one line for a script
+//! interval between frames), and the host's own time meanwhile (how much
+//! of the wall time it worked), summed up in one line for a script
 //! (docs/benchmarks.md, "Run growth in the workbench against cdca grow").
 
 use web_time::Instant;
@@ -10,6 +11,8 @@ use web_time::Instant;
 #[derive(Debug, Default)]
 pub struct RunTimer {
     start: Option<Instant>,
+    /// The host's own time at the start, s (`Runner::host_seconds`).
+    host_start: f64,
     /// Frame CPU time, s.
     cpu: Vec<f64>,
     /// Interval since the previous frame, s.
@@ -18,10 +21,12 @@ pub struct RunTimer {
 }
 
 impl RunTimer {
-    /// The run starts now (its command is applied in this frame).
-    pub fn start(&mut self) {
+    /// The run starts now (its command is applied in this frame); the
+    /// host has worked `host_seconds` so far.
+    pub fn start(&mut self, host_seconds: f64) {
         if self.start.is_none() {
             self.start = Some(Instant::now());
+            self.host_start = host_seconds;
         }
     }
 
@@ -38,8 +43,9 @@ impl RunTimer {
         }
     }
 
-    /// The run has ended: the summary line, once.
-    pub fn finish(&mut self, steps: usize, load_factor: f64) -> Option<String> {
+    /// The run has ended, the host having worked `host_seconds` in all: the
+    /// summary line, once.
+    pub fn finish(&mut self, steps: usize, load_factor: f64, host_seconds: f64) -> Option<String> {
         let start = self.start.filter(|_| !self.done)?;
         self.done = true;
         let wall = start.elapsed().as_secs_f64();
@@ -49,7 +55,7 @@ impl RunTimer {
         Some(format!(
             "run wall {wall:.3} s; {steps} growth steps, last λ {load_factor}; {} frames: \
              CPU mean {:.1} ms, p95 {:.1} ms, max {:.1} ms; interval mean {:.1} ms, p95 {:.1} \
-             ms, max {:.1} ms",
+             ms, max {:.1} ms; host {:.3} s",
             self.cpu.len(),
             ms(cpu_mean),
             ms(cpu_p95),
@@ -57,6 +63,7 @@ impl RunTimer {
             ms(dt_mean),
             ms(dt_p95),
             ms(dt_max),
+            host_seconds - self.host_start,
         ))
     }
 }
@@ -81,16 +88,20 @@ mod tests {
     fn the_summary_gives_the_mean_p95_and_max_of_the_runs_frames() {
         let mut t = RunTimer::default();
         t.record(1.0, 1.0);
-        assert!(t.finish(0, 0.0).is_none(), "nothing started");
-        t.start();
+        assert!(t.finish(0, 0.0, 0.0).is_none(), "nothing started");
+        t.start(1.25);
         for k in 1..=100 {
             t.record(f64::from(k) * 1e-3, 0.0);
         }
-        let line = t.finish(3, 0.5).unwrap_or_default();
+        let line = t.finish(3, 0.5, 3.0).unwrap_or_default();
         assert!(
             line.contains("3 growth steps, last λ 0.5; 100 frames: CPU mean 50.5 ms, p95 96.0 ms, max 100.0 ms"),
             "{line}"
         );
-        assert!(t.finish(3, 0.5).is_none(), "once");
+        assert!(
+            line.ends_with("; host 1.750 s"),
+            "the host's time in the run: {line}"
+        );
+        assert!(t.finish(3, 0.5, 3.0).is_none(), "once");
     }
 }

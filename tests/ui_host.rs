@@ -60,3 +60,56 @@ fn the_host_thread_grows_what_the_frames_grow_and_the_ui_thread_solves_nothing()
         );
     }
 }
+
+/// Export fields asks the host and saves its answer when it comes: on the
+/// host thread the VTU file is the in-process one, byte for byte (the same
+/// solve of the default scene), with the mesh's points and cells.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "the solver is slow without optimisation: run with --release"
+)]
+fn export_fields_comes_from_the_host_as_in_process() {
+    use cdca_workbench::state::command::{Command, Export};
+    let dir = std::env::temp_dir().join(format!("cdca_ui_host_vtu_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary directory");
+    let mut files = Vec::new();
+    for host_thread in [true, false] {
+        let mut h = harness(Options {
+            host_thread,
+            file_dialogs: false,
+            ..Options::default()
+        });
+        h.run_steps(2);
+        support::run_until_paused(&mut h, 5000);
+        assert!(h.state().is_solved(), "the default scene is solved");
+        h.state_mut().push(Command::Export(Export::Fields));
+        let mut frames = 0;
+        while h.state().typed_path().is_none() && frames < 500 {
+            h.step();
+            frames += 1;
+        }
+        let offered = h.state().typed_path().unwrap_or_default().to_owned();
+        assert!(offered.ends_with(".vtu"), "the path offered: {offered:?}");
+        let path = dir.join(format!("fields_{host_thread}.vtu"));
+        h.state_mut().set_typed_path(&path.display().to_string());
+        h.state_mut().push(Command::UseTypedPath);
+        h.step();
+        files.push(std::fs::read_to_string(&path).expect("the fields were written"));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    let scene = cdca_workbench::files::scenes::default_scene();
+    let (nx, ny) = (scene.mesh.nx, scene.mesh.ny);
+    assert!(
+        files[0].contains(&format!(
+            "NumberOfPoints=\"{}\" NumberOfCells=\"{}\"",
+            (nx + 1) * (ny + 1),
+            nx * ny
+        )),
+        "the mesh's points and cells"
+    );
+    assert!(
+        files[0] == files[1],
+        "the host thread's file is the in-process one"
+    );
+}

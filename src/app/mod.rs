@@ -1284,15 +1284,15 @@ impl WorkbenchApp {
 }
 
 impl WorkbenchApp {
-    /// While the growth thread runs and no input comes, a frame waits
+    /// While the host works on its thread and no input comes, a frame waits
     /// until [`CALM_FRAME`](crate::run::link::CALM_FRAME) after the last one
     /// began. The app asks for 10
     /// frames a second then, but egui asks for one or two more after each
     /// update, while a grid's columns or a scroll bar settle to what it
     /// shows: painted in software (Xvfb, llvmpipe on both cores) that was
     /// about 29 frames a second at 30 ms of CPU each, taken from the
-    /// growth thread. Input (a click, a pointer move) is answered at once.
-    /// In a browser there is no growth thread.
+    /// host thread. Input (a click, a pointer move) is answered at once.
+    /// A browser's page does not wait: it paints when the worker posts.
     fn calm_frames(&mut self, ctx: &egui::Context) {
         let quiet = ctx.input(|i| i.events.is_empty() && !i.pointer.is_moving());
         if let Some(last) = self.last_frame

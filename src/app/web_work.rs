@@ -16,7 +16,7 @@
 //! browser free to run input and frames between any two, and the page
 //! repaints every [`REPAINT_EVERY`] instead of continuously (the app leaves
 //! repainting to this loop: `WorkbenchApp::works_between_frames`), as the
-//! native growth thread repaints when it has something to show. Same tasks,
+//! native host thread repaints when it has something to show. Same tasks,
 //! same order (`WorkbenchApp::advance_job_until`), so the same results.
 //! Measured on the stepped pair (docs/browser.md): Run growth in 14.6–21.2 s
 //! instead of 21.9–30.4 s; a solver call that cannot be split (up to 0.2 s

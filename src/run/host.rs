@@ -16,7 +16,7 @@ use web_time::Instant;
 use crate::results::field::{FieldKey, FieldSampler, FieldSamples, LIVE_FIELD_INTERVAL};
 use crate::results::solution::{SecondStart, SolutionView};
 use crate::run::pacer::Pacer;
-use crate::run::protocol::{Post, Request, Shown};
+use crate::run::protocol::{PIECE, Post, Request, Shown};
 use crate::run::task::Progress;
 use crate::run::{Run, RunMode, Slice};
 
@@ -372,25 +372,34 @@ impl Host {
     }
 
     /// A run or the check from bonded faces goes on.
-    pub fn is_running(&self) -> bool {
+    fn is_running(&self) -> bool {
         self.run.is_some() || self.second_start.is_some()
     }
 
     /// Growth steps of the simulation.
-    pub fn steps(&self) -> usize {
+    fn steps(&self) -> usize {
         self.sim.as_ref().map_or(0, |s| s.history().len())
-    }
-
-    /// The last slice reached a growth step's load, or completed a field:
-    /// worth a post at once.
-    pub fn at_event(&self) -> bool {
-        self.at_step_load || self.new_field
     }
 
     /// Sweeps per call are fixed by the user (the run is watched a call at
     /// a time).
     pub fn is_paced(&self) -> bool {
         self.pacer.fixed().is_some()
+    }
+
+    /// A piece of [`PIECE`] of the work, for a host away from the UI
+    /// (a thread, a worker); whether it is worth a post at once: it
+    /// reached a step's load, recorded a step, completed a field, started
+    /// or ended the run, or the run is paced (watched a call at a time).
+    pub fn work_piece(&mut self) -> bool {
+        let (steps, running) = (self.steps(), self.is_running());
+        self.advance(Instant::now() + PIECE);
+        self.at_step_load
+            || self.new_field
+            || self.steps() != steps
+            || running != self.is_running()
+            || !self.is_busy()
+            || self.is_paced()
     }
 
     /// The work until about `deadline`: the field the UI wants first (a run
@@ -802,8 +811,15 @@ impl Host {
     fn field_key(&mut self) -> Option<FieldKey> {
         let key = self.field_wanted?;
         let version = self.field_version();
-        (self.sim.is_some() && self.view.has_field() && !self.is_previewing())
+        self.has_field_to_sample()
             .then_some(FieldKey { version, ..key })
+    }
+
+    /// The state has a field to sample: a solution or a live iterate, but
+    /// not a dragged scene's solve under way (the last solved position's
+    /// field stays).
+    fn has_field_to_sample(&self) -> bool {
+        self.sim.is_some() && self.view.has_field() && !self.is_previewing()
     }
 
     /// A field is wanted and not yet sampled.
@@ -811,9 +827,7 @@ impl Host {
         let Some(key) = self.field_wanted else {
             return false;
         };
-        self.sim.is_some()
-            && self.view.has_field()
-            && !self.is_previewing()
+        self.has_field_to_sample()
             && !self.field.is_current(&FieldKey {
                 version: self.view.version,
                 ..key

@@ -22,6 +22,16 @@ use crate::run::RunMode;
 /// 40% of a core, and Run growth took 2.7 times as long as `cdca grow`.)
 pub const POST_INTERVAL: Duration = Duration::from_millis(100);
 
+/// A host away from the UI (a thread, a worker) works in pieces this long
+/// between looks at its requests: as long as a frame slice was, so that a
+/// request waits at most about this long (plus one call that cannot be
+/// split).
+pub const PIECE: Duration = Duration::from_millis(12);
+
+/// A run paced by the user (sweeps per call) is watched a call per frame:
+/// a host away from the UI waits this long between calls.
+pub const PACED_CALL: Duration = Duration::from_millis(16);
+
 /// What the UI asks of the host. Each is handled in the order sent.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub enum Request {

@@ -429,15 +429,15 @@ impl Runner {
         self.ask(Request::ForgetContact, None);
     }
 
-    /// A kept run of what is on screen, under a new id.
-    fn keep(&mut self) -> (u64, KeptRun) {
+    /// A kept run of what is on screen with `replay`, under a new id.
+    fn keep(&mut self, replay: Replay) -> (u64, KeptRun) {
         self.next_kept += 1;
         let id = self.next_kept;
         let kept = KeptRun {
             id: Some(id),
             view: self.shown.view.clone(),
             field: self.field.current().cloned(),
-            replay: std::mem::take(&mut self.replay),
+            replay,
             forget: self.forgotten.0.clone(),
         };
         (id, kept)
@@ -450,7 +450,8 @@ impl Runner {
         if self.stale || self.shown.view.history.is_empty() || !self.has_sim {
             return None;
         }
-        let (id, kept) = self.keep();
+        let replay = std::mem::take(&mut self.replay);
+        let (id, kept) = self.keep(replay);
         self.has_sim = false;
         self.ask(Request::TakeRun(id), Some(RunMode::Paused));
         Some(kept)
@@ -502,12 +503,8 @@ impl Runner {
     /// After growth, the grown scene is solved on a simulation of its own,
     /// and the run is returned, as it was on screen, for Undo.
     pub fn solve(&mut self) -> Option<KeptRun> {
-        let kept = (self.has_sim && self.shown.grown).then(|| {
-            let (_, kept) = self.keep();
-            // the run's steps stay in the plots
-            self.replay = kept.replay.clone();
-            kept
-        });
+        // (the run's steps stay in the plots)
+        let kept = (self.has_sim && self.shown.grown).then(|| self.keep(self.replay.clone()).1);
         let keep = kept.as_ref().and_then(|k| k.id);
         self.ask(Request::Solve { keep }, Some(RunMode::Relaxing));
         kept

@@ -1,24 +1,16 @@
 //! Natively, the host on a thread of its own (`Link::away`): it handles
 //! requests as they come, works through the run between them in pieces
-//! of [`PIECE`], and posts what the UI shows. Dropping the UI's side ends
+//! (`Host::work_piece`), and posts what the UI shows. Dropping the UI's side ends
 //! the thread.
 
 use std::sync::mpsc::{self, Receiver, Sender, TryRecvError};
 use std::sync::{Arc, Mutex, PoisonError};
 use std::thread::JoinHandle;
 
-use web_time::{Duration, Instant};
+use web_time::Instant;
 
 use crate::run::host::Host;
-use crate::run::protocol::{POST_INTERVAL, Post, Request};
-
-/// The host thread's pieces of work between looks at its requests: as long
-/// as a frame slice was, so that a request waits at most about this long.
-const PIECE: Duration = Duration::from_millis(12);
-
-/// A run paced by the user (sweeps per call) is watched a call per frame:
-/// the host thread waits this long between calls.
-const PACED_CALL: Duration = Duration::from_millis(16);
+use crate::run::protocol::{PACED_CALL, POST_INTERVAL, Post, Request};
 
 /// The host thread, seen from the UI: requests go, posts come. Dropping
 /// it ends the thread after its piece under way.
@@ -89,16 +81,7 @@ impl ThreadSide {
                 }
                 handled = true;
             }
-            let mut event = false;
-            if self.host.is_busy() {
-                let (steps, running) = (self.host.steps(), self.host.is_running());
-                self.host.advance(Instant::now() + PIECE);
-                event = self.host.at_event()
-                    || self.host.steps() != steps
-                    || running != self.host.is_running()
-                    || !self.host.is_busy()
-                    || self.host.is_paced();
-            }
+            let event = self.host.is_busy() && self.host.work_piece();
             if handled || event || (self.host.is_busy() && posted.elapsed() >= POST_INTERVAL) {
                 posted = Instant::now();
                 let shown = self.host.shown();

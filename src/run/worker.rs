@@ -8,7 +8,7 @@
 //! - the page's side, [`WorkerLink`]: sends requests, keeps the posts that
 //!   come, and wakes the page's frames;
 //! - the worker's side, [`serve`]: handles each request as it comes, and
-//!   between them advances the host in pieces of [`PIECE`], each a task of
+//!   between them advances the host in pieces (`Host::work_piece`), each a task of
 //!   its own (posted through a `MessageChannel`), posting what the UI
 //!   shows as the native host thread does (`link::Worker`).
 
@@ -17,17 +17,10 @@ use std::rc::Rc;
 
 use wasm_bindgen::JsCast;
 use wasm_bindgen::closure::Closure;
-use web_time::{Duration, Instant};
+use web_time::Instant;
 
 use crate::run::host::Host;
-use crate::run::protocol::{POST_INTERVAL, Post, Request, wire};
-
-/// The worker's pieces of work between looks at its requests.
-const PIECE: Duration = Duration::from_millis(12);
-
-/// A run paced by the user is watched a call per frame: the worker waits
-/// this long between calls, ms.
-const PACED_CALL_MS: i32 = 16;
+use crate::run::protocol::{PACED_CALL, POST_INTERVAL, Post, Request, wire};
 
 /// A post as a message: `{ json, samples }`, the samples (if any) in a
 /// `Float32Array` whose buffer the list returned transfers.
@@ -246,13 +239,7 @@ impl Served {
         if !host.is_busy() {
             return;
         }
-        let (steps, running) = (host.steps(), host.is_running());
-        host.advance(Instant::now() + PIECE);
-        let event = host.at_event()
-            || host.steps() != steps
-            || running != host.is_running()
-            || !host.is_busy()
-            || host.is_paced();
+        let event = host.work_piece();
         drop(host);
         if event || self.posted_at.get().elapsed() >= POST_INTERVAL {
             self.post_shown();
@@ -261,7 +248,7 @@ impl Served {
     }
 
     /// Posts the next piece of work, if the host has work and none is
-    /// posted: at once, or after [`PACED_CALL_MS`] for a paced run.
+    /// posted: at once, or after [`PACED_CALL`] for a paced run.
     fn schedule(&self) {
         let host = self.host.borrow();
         if self.scheduled.get() || !host.is_busy() {
@@ -275,7 +262,7 @@ impl Served {
             self.scope
                 .set_timeout_with_callback_and_timeout_and_arguments_0(
                     next.unchecked_ref(),
-                    PACED_CALL_MS,
+                    i32::try_from(PACED_CALL.as_millis()).unwrap_or(i32::MAX),
                 )
                 .is_ok()
         } else {
